@@ -1,0 +1,267 @@
+#pragma once
+// The implicit lattice graph over a GOG field: vertices are generated on the fly, never stored.
+//
+// Seed rule (seed 002 Algorithm 2): +-1 along one axis (cost 1), or along two distinct axes
+// (cost sqrt2) when both one-axis intermediate states are free. The one-axis neighbours are
+// the same states as those intermediates, so each is evaluated once per expansion.
+// Full rule (d <= 4): +-1 along any non-empty set of k axes (cost sqrt k) when every state of
+// the unit sub-cube spanned by the move is free (no corner cutting); for k = 2 this is the
+// seed rule.
+//
+// Validity during expansion is incremental: the GOG level sum of a neighbour differs from the
+// expanded state's in one or two axis terms, so a check is O(1) rather than O(d). Each such
+// evaluation of a state's validity counts as one collision check.
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "hpcplan/env/gog.hpp"
+#include "hpcplan/graph/lattice_cost.hpp"
+#include "hpcplan/graph/packed_key.hpp"
+
+namespace hpcplan {
+
+enum class Connectivity { seed_pairs, full };
+
+inline constexpr int kMaxFullConnectivityDims = 4;
+
+template <int W>
+class LatticeGraph {
+ public:
+  using State = PackedKey<W>;
+  using Move = std::uint16_t;
+  using Hash = PackedKeyHash<W>;
+  using Cost = LatticeCost;
+  static constexpr Move kNoMove = 0xFFFF;
+
+  LatticeGraph(const GogField& field, Connectivity connectivity)
+      : field_(field),
+        layout_(field.dims(), field.extent()),
+        connectivity_(connectivity),
+        dims_(field.dims()),
+        extent_(field.extent()),
+        threshold_(field.threshold()) {
+    if (layout_.words() > W) throw std::logic_error("LatticeGraph: key width too small");
+    if (connectivity == Connectivity::full && dims_ > kMaxFullConnectivityDims)
+      throw std::logic_error("full connectivity is limited to d <= 4");
+    for (int a = 0; a < dims_; ++a) tables_[a] = field.level_table(a);
+    if (connectivity == Connectivity::seed_pairs)
+      build_seed_moves();
+    else
+      build_full_moves();
+  }
+
+  const KeyLayout& layout() const { return layout_; }
+  const GogField& field() const { return field_; }
+  Connectivity connectivity() const { return connectivity_; }
+  std::uint64_t collision_checks() const { return checks_; }
+  std::size_t max_successors() const { return moves_.size(); }
+
+  State pack(std::span<const int> coords) const { return layout_.pack<W>(coords); }
+  std::vector<int> unpack(const State& s) const {
+    std::vector<int> c(dims_);
+    layout_.unpack(s, c.data());
+    return c;
+  }
+  bool is_free(const State& s) const {
+    int c[kMaxDims];
+    layout_.unpack(s, c);
+    return field_.is_free(std::span<const int>(c, dims_));
+  }
+
+  State predecessor(const State& t, Move m) const {
+    State p = t;
+    for (int w = 0; w < W; ++w) p.w[w] -= moves_[m].delta[w];
+    return p;
+  }
+
+  // Calls emit(successor, edge_cost, move) for every legal move out of x.
+  template <class Emit>
+  void for_each_successor(const State& x, Emit&& emit) const {
+    if (connectivity_ == Connectivity::seed_pairs)
+      expand_seed_rule(x, emit);
+    else
+      expand_full(x, emit);
+  }
+
+  // Independent re-validation for returned paths: recomputes everything from the GOG formula
+  // (not the level tables or the incremental sums). Returns the move's length, or -1 if a->b
+  // is not a legal move between free states.
+  double checked_edge_length(const State& a, const State& b) const {
+    int ca[kMaxDims], cb[kMaxDims];
+    layout_.unpack(a, ca);
+    layout_.unpack(b, cb);
+    int axes[kMaxDims], steps[kMaxDims], k = 0;
+    for (int i = 0; i < dims_; ++i) {
+      const int diff = cb[i] - ca[i];
+      if (diff < -1 || diff > 1) return -1.0;
+      if (diff != 0) {
+        axes[k] = i;
+        steps[k] = diff;
+        ++k;
+      }
+    }
+    if (k == 0) return -1.0;
+    if (connectivity_ == Connectivity::seed_pairs && k > 2) return -1.0;
+    // Every corner of the spanned sub-cube (including a and b) must be free.
+    for (unsigned subset = 0; subset < (1u << k); ++subset) {
+      int corner[kMaxDims];
+      std::copy(ca, ca + dims_, corner);
+      for (int j = 0; j < k; ++j)
+        if (subset & (1u << j)) corner[axes[j]] += steps[j];
+      if (!field_.is_free(std::span<const int>(corner, dims_))) return -1.0;
+    }
+    return std::sqrt(static_cast<double>(k));
+  }
+
+ private:
+  struct MoveDef {
+    std::array<std::uint64_t, W> delta{};
+    LatticeCost cost = LatticeCost::for_axes(1);
+    std::vector<int> corners;  // full rule: neighbourhood indices that must be free
+  };
+
+  void build_seed_moves() {
+    // Order must match expand_seed_rule: singles (axis, -/+), then pairs i<k (-/+, -/+).
+    for (int i = 0; i < dims_; ++i)
+      for (int s = -1; s <= 1; s += 2) {
+        MoveDef m;
+        layout_.add_step<W>(m.delta, i, s);
+        moves_.push_back(m);
+      }
+    for (int i = 0; i < dims_; ++i)
+      for (int k = i + 1; k < dims_; ++k)
+        for (int si = -1; si <= 1; si += 2)
+          for (int sk = -1; sk <= 1; sk += 2) {
+            MoveDef m;
+            m.cost = LatticeCost::for_axes(2);
+            layout_.add_step<W>(m.delta, i, si);
+            layout_.add_step<W>(m.delta, k, sk);
+            moves_.push_back(m);
+          }
+  }
+
+  // Neighbourhood cells are indexed in base 3 (digit 0,1,2 = step -1,0,+1 per axis).
+  void build_full_moves() {
+    int cells = 1;
+    for (int i = 0; i < dims_; ++i) cells *= 3;
+    const int centre = (cells - 1) / 2;
+    for (int cell = 0; cell < cells; ++cell) {
+      if (cell == centre) continue;
+      MoveDef m;
+      int digits[kMaxDims], k = 0;
+      for (int i = 0, c = cell; i < dims_; ++i, c /= 3) {
+        digits[i] = c % 3;
+        if (digits[i] != 1) {
+          layout_.add_step<W>(m.delta, i, digits[i] - 1);
+          ++k;
+        }
+      }
+      m.cost = LatticeCost::for_axes(k);
+      // Corners: every cell whose digits are, per axis, either 1 or the move's digit.
+      for (int other = 0; other < cells; ++other) {
+        bool inside = other != centre;
+        for (int i = 0, c = other; i < dims_ && inside; ++i, c /= 3)
+          inside = (c % 3 == 1) || (c % 3 == digits[i]);
+        if (inside) m.corners.push_back(other);
+      }
+      moves_.push_back(std::move(m));
+    }
+    full_cells_ = cells;
+  }
+
+  State step(const State& x, Move m) const {
+    State t = x;
+    for (int w = 0; w < W; ++w) t.w[w] += moves_[m].delta[w];
+    return t;
+  }
+
+  template <class Emit>
+  void expand_seed_rule(const State& x, Emit& emit) const {
+    int c[kMaxDims];
+    layout_.unpack(x, c);
+    int sum = 0;
+    for (int a = 0; a < dims_; ++a) sum += tables_[a][c[a]];
+    // change[a][s]: level-sum change of stepping axis a by s (s=0: -1, s=1: +1); free1 marks
+    // one-axis neighbours that are in the box and free.
+    int change[kMaxDims][2];
+    bool free1[kMaxDims][2];
+    std::uint64_t checks = 0;
+    Move id = 0;
+    constexpr LatticeCost kOne = LatticeCost::for_axes(1), kTwo = LatticeCost::for_axes(2);
+    for (int a = 0; a < dims_; ++a) {
+      const int here = tables_[a][c[a]];
+      for (int s = 0; s < 2; ++s, ++id) {
+        const int nc = c[a] + (s ? 1 : -1);
+        if (nc < 0 || nc >= extent_) {
+          free1[a][s] = false;
+          continue;
+        }
+        ++checks;
+        change[a][s] = tables_[a][nc] - here;
+        free1[a][s] = sum + change[a][s] < threshold_;
+        if (free1[a][s]) emit(step(x, id), kOne, id);
+      }
+    }
+    for (int i = 0; i < dims_; ++i)
+      for (int k = i + 1; k < dims_; ++k)
+        for (int si = 0; si < 2; ++si)
+          for (int sk = 0; sk < 2; ++sk, ++id) {
+            if (!free1[i][si] || !free1[k][sk]) continue;
+            ++checks;
+            if (sum + change[i][si] + change[k][sk] < threshold_) emit(step(x, id), kTwo, id);
+          }
+    checks_ += checks;
+  }
+
+  template <class Emit>
+  void expand_full(const State& x, Emit& emit) const {
+    int c[kMaxDims];
+    layout_.unpack(x, c);
+    int sum = 0;
+    for (int a = 0; a < dims_; ++a) sum += tables_[a][c[a]];
+    bool free_cell[81];  // 3^4
+    std::uint64_t checks = 0;
+    const int centre = (full_cells_ - 1) / 2;
+    for (int cell = 0; cell < full_cells_; ++cell) {
+      if (cell == centre) {
+        free_cell[cell] = true;
+        continue;
+      }
+      int s = sum;
+      bool inside = true;
+      for (int i = 0, q = cell; i < dims_; ++i, q /= 3) {
+        const int step = q % 3 - 1;
+        if (step == 0) continue;
+        const int nc = c[i] + step;
+        if (nc < 0 || nc >= extent_) {
+          inside = false;
+          break;
+        }
+        s += tables_[i][nc] - tables_[i][c[i]];
+      }
+      if (inside) ++checks;
+      free_cell[cell] = inside && s < threshold_;
+    }
+    for (Move id = 0; id < moves_.size(); ++id) {
+      bool ok = true;
+      for (int corner : moves_[id].corners) ok = ok && free_cell[corner];
+      if (ok) emit(step(x, id), moves_[id].cost, id);
+    }
+    checks_ += checks;
+  }
+
+  const GogField& field_;
+  KeyLayout layout_;
+  Connectivity connectivity_;
+  int dims_;
+  int extent_;
+  int threshold_;
+  std::array<const std::uint8_t*, kMaxDims> tables_{};
+  std::vector<MoveDef> moves_;
+  int full_cells_ = 0;
+  mutable std::uint64_t checks_ = 0;
+};
+
+}  // namespace hpcplan

@@ -1,0 +1,58 @@
+#pragma once
+// A grid planning request on the GOG field, validated as a whole: what the CLI, benchmarks and
+// the distributed layer all build before searching.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hpcplan/env/gog.hpp"
+#include "hpcplan/graph/lattice_graph.hpp"
+
+namespace hpcplan {
+
+enum class GridAlgorithm { astar, wastar, dijkstra, bfs };
+enum class HeuristicKind { lattice, euclidean };
+
+GridAlgorithm parse_grid_algorithm(std::string_view name);  // InputError if unknown
+HeuristicKind parse_heuristic(std::string_view name);
+Connectivity parse_connectivity(std::string_view name);
+std::string_view to_string(GridAlgorithm a);
+std::string_view to_string(HeuristicKind h);
+std::string_view to_string(Connectivity c);
+
+// "3,4,5" -> {3,4,5}; InputError naming `what` on anything malformed.
+std::vector<int> parse_coordinates(std::string_view text, std::string_view what);
+
+struct GridProblem {
+  int dims = 2;
+  int extent = 100;
+  GogParams gog;
+  Connectivity connectivity = Connectivity::seed_pairs;
+  std::optional<std::vector<int>> start;  // default: (0,...,0), adjusted until free
+  std::optional<std::vector<int>> goal;   // default: (extent-1,...), adjusted until free
+};
+
+struct GridSearchOptions {
+  GridAlgorithm algorithm = GridAlgorithm::astar;
+  std::optional<double> weight;  // weighted A* only; default 2
+  HeuristicKind heuristic = HeuristicKind::lattice;
+  std::uint64_t max_states = 0;  // 0 = derived from available memory
+  double time_limit_s = 0.0;
+  bool keep_path = false;
+};
+
+// Throws InputError for anything a user could have got wrong.
+void validate(const GridProblem& problem, const GridSearchOptions& options);
+
+// Seed 002 III-B: from the nominal corner, advance one voxel at a time, one axis after another
+// (axis 0, 1, ..., d-1, 0, ...), towards the opposite corner until the state is free.
+// Returns the free state; InputError if the walk leaves the box first.
+std::vector<int> adjust_to_free(const GogField& field, std::vector<int> state, int direction,
+                                std::string_view what);
+
+// Bytes one stored state costs the search (visited-map slot at typical load, frontier entry).
+std::uint64_t bytes_per_state(int key_words);
+
+}  // namespace hpcplan

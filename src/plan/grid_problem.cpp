@@ -1,0 +1,133 @@
+#include "hpcplan/plan/grid_problem.hpp"
+
+#include <charconv>
+#include <cmath>
+
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/core/format.hpp"
+#include "hpcplan/graph/packed_key.hpp"
+
+namespace hpcplan {
+
+GridAlgorithm parse_grid_algorithm(std::string_view name) {
+  if (name == "astar") return GridAlgorithm::astar;
+  if (name == "wastar") return GridAlgorithm::wastar;
+  if (name == "dijkstra") return GridAlgorithm::dijkstra;
+  if (name == "bfs") return GridAlgorithm::bfs;
+  throw InputError("unknown algorithm '" + std::string(name) +
+                   "' (expected astar, wastar, dijkstra or bfs)");
+}
+
+HeuristicKind parse_heuristic(std::string_view name) {
+  if (name == "lattice") return HeuristicKind::lattice;
+  if (name == "euclidean") return HeuristicKind::euclidean;
+  throw InputError("unknown heuristic '" + std::string(name) + "' (expected lattice or euclidean)");
+}
+
+Connectivity parse_connectivity(std::string_view name) {
+  if (name == "seed") return Connectivity::seed_pairs;
+  if (name == "full") return Connectivity::full;
+  throw InputError("unknown connectivity '" + std::string(name) + "' (expected seed or full)");
+}
+
+std::string_view to_string(GridAlgorithm a) {
+  switch (a) {
+    case GridAlgorithm::astar:
+      return "astar";
+    case GridAlgorithm::wastar:
+      return "wastar";
+    case GridAlgorithm::dijkstra:
+      return "dijkstra";
+    case GridAlgorithm::bfs:
+      return "bfs";
+  }
+  return "?";
+}
+std::string_view to_string(HeuristicKind h) {
+  return h == HeuristicKind::lattice ? "lattice" : "euclidean";
+}
+std::string_view to_string(Connectivity c) {
+  return c == Connectivity::seed_pairs ? "seed" : "full";
+}
+
+std::vector<int> parse_coordinates(std::string_view text, std::string_view what) {
+  std::vector<int> coords;
+  const auto fail = [&](const std::string& why) {
+    throw InputError(std::string(what) + " '" + std::string(text) + "' is malformed: " + why);
+  };
+  if (text.empty()) fail("empty");
+  std::size_t pos = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', pos);
+    const std::string_view item =
+        text.substr(pos, comma == std::string_view::npos ? std::string_view::npos : comma - pos);
+    int value = 0;
+    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
+    if (item.empty() || ec != std::errc() || end != item.data() + item.size())
+      fail(std::string("'").append(item).append("' is not an integer"));
+    coords.push_back(value);
+    if (comma == std::string_view::npos) break;
+    pos = comma + 1;
+  }
+  return coords;
+}
+
+namespace {
+
+void check_state(const std::optional<std::vector<int>>& s, const GridProblem& p,
+                 std::string_view what) {
+  if (!s) return;
+  if (static_cast<int>(s->size()) != p.dims)
+    throw InputError(std::string(what) + " has " + std::to_string(s->size()) +
+                     " coordinates but --dims is " + std::to_string(p.dims));
+  for (int c : *s)
+    if (c < 0 || c >= p.extent)
+      throw InputError(std::string(what) + " (" + join_coordinates(*s) +
+                       ") is outside the box [0, " + std::to_string(p.extent - 1) + "]");
+}
+
+}  // namespace
+
+void validate(const GridProblem& p, const GridSearchOptions& o) {
+  if (p.dims < 1 || p.dims > kMaxDims)
+    throw InputError("--dims must be in [1, 16], got " + std::to_string(p.dims));
+  if (p.extent < 2 || p.extent > kMaxExtent)
+    throw InputError("--extent must be in [2, 65535], got " + std::to_string(p.extent));
+  if (p.connectivity == Connectivity::full && p.dims > kMaxFullConnectivityDims)
+    throw InputError("--connectivity full is limited to --dims <= 4 (3^d - 1 moves)");
+  check_state(p.start, p, "--start");
+  check_state(p.goal, p, "--goal");
+  if (o.weight) {
+    if (!std::isfinite(*o.weight) || *o.weight < 1.0)
+      throw InputError("--weight must be a finite number >= 1");
+    if (o.algorithm != GridAlgorithm::wastar && *o.weight != 1.0)
+      throw InputError("--weight applies to --algo wastar only");
+  }
+  if (!(o.time_limit_s >= 0.0) || !std::isfinite(o.time_limit_s))
+    throw InputError("--time-limit must be a non-negative number of seconds");
+}
+
+std::vector<int> adjust_to_free(const GogField& field, std::vector<int> state, int direction,
+                                std::string_view what) {
+  const int d = field.dims();
+  for (long step = 0; !field.is_free(state); ++step) {
+    const int axis = static_cast<int>(step % d);
+    state[axis] += direction;
+    if (state[axis] < 0 || state[axis] >= field.extent())
+      throw InputError("no free " + std::string(what) +
+                       " found by advancing from the corner; choose it with --" +
+                       std::string(what));
+  }
+  return state;
+}
+
+std::uint64_t bytes_per_state(int key_words) {
+  const std::uint64_t key = 8ULL * static_cast<std::uint64_t>(key_words);
+  const std::uint64_t slot = key + 16 + 1;  // key, node (g, move, flag), control byte
+  const std::uint64_t frontier = 16 + key;  // heap entry (f, g, state)
+  // A Swiss table runs between 7/16 and 7/8 full and briefly holds old and new arrays while
+  // growing, so budget three slots per state.
+  return 3 * slot + frontier;
+}
+
+}  // namespace hpcplan
