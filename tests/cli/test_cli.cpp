@@ -1,0 +1,156 @@
+// The `hpcplan grid` contract, exercised through the real executable.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "hpcplan/env/gog.hpp"
+
+namespace {
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+CliRun run(const std::string& args) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string err_file = (dir / ("hpcplan_cli_err_" + std::to_string(::getpid()))).string();
+  const std::string cmd = std::string(HPCPLAN_BIN) + " " + args + " 2>" + err_file;
+  CliRun r;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
+  const int status = ::pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_file);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  std::filesystem::remove(err_file);
+  return r;
+}
+
+void expect_bad_input(const std::string& args, const std::string& mentions) {
+  const CliRun r = run(args);
+  EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+  EXPECT_TRUE(r.out.empty()) << args;
+  // One line, naming the problem.
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find(mentions), std::string::npos) << args << " -> " << r.err;
+}
+
+TEST(Cli, JsonHasTheDocumentedKeys) {
+  const CliRun r = run("grid --dims 3 --json --path");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"status",      "dims",    "algo",     "weight",    "heuristic",
+                          "seed",        "extent",  "start",    "goal",      "cost",
+                          "hops",        "quality", "expanded", "generated", "collision_checks",
+                          "peak_states", "time_ms", "ranks",    "path",      "blocked_fraction",
+                          "threshold"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["status"], "solved");
+  EXPECT_EQ(j["ranks"], 1);
+  EXPECT_EQ(j["path"].size(), j["hops"].get<std::size_t>() + 1);
+  EXPECT_EQ(j["path"].front(), j["start"]);
+  EXPECT_EQ(j["path"].back(), j["goal"]);
+}
+
+TEST(Cli, EveryAlgorithmRunsAndAgreesOnCost) {
+  double astar_cost = 0;
+  for (const char* algo : {"astar", "dijkstra", "wastar", "bfs"}) {
+    const CliRun r = run(std::string("grid --dims 2 --extent 40 --json --algo ") + algo);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["algo"], algo);
+    const double cost = j["cost"];
+    if (std::string(algo) == "astar") astar_cost = cost;
+    if (std::string(algo) == "dijkstra") {
+      EXPECT_NEAR(cost, astar_cost, 1e-9);
+    }
+    if (std::string(algo) == "wastar") {
+      EXPECT_LE(cost, 2.0 * astar_cost + 1e-9);
+    }
+  }
+}
+
+TEST(Cli, SummaryIsReadable) {
+  const CliRun r = run("grid --dims 2");
+  ASSERT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("status     solved"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("quality"), std::string::npos);
+}
+
+TEST(Cli, NoPathAndBudgetAreValidAnswers) {
+  // Find a 1D field with a wall between the ends.
+  for (std::uint64_t seed = 1; seed < 500; ++seed) {
+    hpcplan::GogParams p;
+    p.seed = seed;
+    p.threshold = 2;
+    const hpcplan::GogField f(1, 64, p);
+    bool wall = false;
+    for (int c = 1; c < 63; ++c) wall = wall || !f.is_free(std::vector<int>{c});
+    if (!wall || !f.is_free(std::vector<int>{0}) || !f.is_free(std::vector<int>{63})) continue;
+    const CliRun r =
+        run("grid --dims 1 --extent 64 --threshold 2 --start 0 --goal 63 --json --seed " +
+            std::to_string(seed));
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["status"], "no_path");
+    EXPECT_TRUE(nlohmann::json::parse(r.out)["cost"].is_null());
+    break;
+  }
+  const CliRun b = run("grid --dims 4 --max-states 5 --json");
+  EXPECT_EQ(b.code, 0);
+  EXPECT_EQ(nlohmann::json::parse(b.out)["status"], "budget_exceeded");
+}
+
+TEST(Cli, BadInputExitsTwoWithOneLine) {
+  expect_bad_input("grid --dims 0", "--dims");
+  expect_bad_input("grid --dims 17", "--dims");
+  expect_bad_input("grid --dims abc", "dims");
+  expect_bad_input("grid --dims 2 --extent 1", "--extent");
+  expect_bad_input("grid --dims 2 --extent 65536", "--extent");
+  expect_bad_input("grid --dims 2 --start 1,2,3", "--start");
+  expect_bad_input("grid --dims 2 --start 1,x", "--start");
+  expect_bad_input("grid --dims 2 --goal 5,100", "outside the box");
+  expect_bad_input("grid --dims 2 --start -1,0", "outside the box");
+  expect_bad_input("grid --dims 2 --algo wastar --weight 0.5", "--weight");
+  expect_bad_input("grid --dims 2 --algo dfs", "unknown algorithm");
+  expect_bad_input("grid --dims 2 --heuristic manhattan", "unknown heuristic");
+  expect_bad_input("grid --dims 2 --frobnicate", "frobnicate");
+  expect_bad_input("grid --dims 5 --connectivity full", "full");
+  expect_bad_input("grid --dims 2 --threshold 99", "--threshold");
+  expect_bad_input("grid", "dims");
+  expect_bad_input("", "subcommand");
+}
+
+TEST(Cli, OutputFileIsWrittenWholeOrNotAtAll) {
+  const auto dir = std::filesystem::temp_directory_path() / "hpcplan_cli_out";
+  std::filesystem::create_directories(dir);
+  const auto file = dir / "result.json";
+  std::filesystem::remove(file);
+  CliRun r = run("grid --dims 2 --output " + file.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(file);
+  EXPECT_EQ(nlohmann::json::parse(in)["status"], "solved");
+  // A bad request leaves the previous result untouched and no temporary behind.
+  r = run("grid --dims 0 --output " + file.string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(std::filesystem::exists(file));
+  // An unwritable destination is a run failure (exit 1), not a crash.
+  r = run("grid --dims 2 --output /nonexistent-dir/x.json");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("/nonexistent-dir/x.json"), std::string::npos);
+  std::size_t entries = 0;
+  for ([[maybe_unused]] auto& e : std::filesystem::directory_iterator(dir)) ++entries;
+  EXPECT_EQ(entries, 1u);
+}
+
+}  // namespace

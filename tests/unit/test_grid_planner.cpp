@@ -1,0 +1,161 @@
+#include <gtest/gtest.h>
+
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/plan/grid_planner.hpp"
+
+namespace {
+
+using namespace hpcplan;
+
+// Finds a 1D field with a blocked cell between two free ones: a wall no path can cross.
+GridProblem walled_line() {
+  for (std::uint64_t seed = 1;; ++seed) {
+    GridProblem p;
+    p.dims = 1;
+    p.extent = 64;
+    p.gog.seed = seed;
+    p.gog.shift_v = 2;
+    p.gog.threshold = 2;
+    const GogField f(1, 64, p.gog);
+    for (int c = 1; c + 1 < 64; ++c) {
+      if (!f.is_free(std::vector<int>{c}) && f.is_free(std::vector<int>{0}) &&
+          f.is_free(std::vector<int>{63})) {
+        p.start = std::vector<int>{0};
+        p.goal = std::vector<int>{63};
+        return p;
+      }
+    }
+  }
+}
+
+TEST(GridPlanner, WallGivesNoPathForEveryAlgorithm) {
+  const GridProblem p = walled_line();
+  for (auto algo :
+       {GridAlgorithm::astar, GridAlgorithm::wastar, GridAlgorithm::dijkstra, GridAlgorithm::bfs}) {
+    GridSearchOptions o;
+    o.algorithm = algo;
+    const GridReport r = solve_grid(p, o);
+    EXPECT_EQ(r.status, search::Status::no_path);
+    EXPECT_TRUE(r.path.empty());
+  }
+}
+
+TEST(GridPlanner, TinyBudgetIsReportedNotCrashed) {
+  GridProblem p;
+  p.dims = 4;
+  GridSearchOptions o;
+  o.max_states = 10;
+  const GridReport r = solve_grid(p, o);
+  EXPECT_EQ(r.status, search::Status::budget_exceeded);
+  EXPECT_LE(r.counters.peak_states, 11u);
+}
+
+TEST(GridPlanner, DefaultProblemsAreSolvedWithTheLatticeQualityLimit) {
+  for (int d = 2; d <= 10; d += 2) {
+    GridProblem p;
+    p.dims = d;
+    const GridReport r = solve_grid(p, GridSearchOptions{});
+    ASSERT_EQ(r.status, search::Status::solved) << "d=" << d;
+    EXPECT_GT(r.blocked_fraction, 0.25);
+    // A lattice path cannot beat the free-space lattice distance.
+    EXPECT_GE(r.quality, std::sqrt(d / 2.0) * (1 - 1e-12) - 0.1 * (d == 2));
+  }
+}
+
+TEST(GridPlanner, DefaultCornersAreAdjustedOneAxisStepAtATime) {
+  int adjusted = 0;
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    GridProblem p;
+    p.dims = 3;
+    p.gog.seed = seed;
+    p.gog.density = 0.6;
+    const GogField f(3, 100, p.gog);
+    GridSearchOptions o;
+    o.max_states = 1;  // only the set-up matters here
+    const GridReport r = solve_grid(p, o);
+    EXPECT_TRUE(f.is_free(r.start));
+    EXPECT_TRUE(f.is_free(r.goal));
+    // Replay the walk: every state before the reported one must be blocked.
+    std::vector<int> s(3, 0);
+    for (int step = 0; s != r.start; ++step) {
+      ASSERT_FALSE(f.is_free(s));
+      ++s[step % 3];
+      ASSERT_LE(step, 300);
+    }
+    adjusted += r.start_adjusted;
+  }
+  EXPECT_GT(adjusted, 5);
+}
+
+TEST(GridPlanner, StartEqualsGoalCostsNothing) {
+  GridProblem p;
+  p.dims = 3;
+  p.gog.threshold = 10;
+  p.start = std::vector<int>{4, 4, 4};
+  p.goal = p.start;
+  GridSearchOptions o;
+  o.keep_path = true;
+  const GridReport r = solve_grid(p, o);
+  EXPECT_EQ(r.status, search::Status::solved);
+  EXPECT_EQ(r.cost, 0.0);
+  EXPECT_EQ(r.quality, 1.0);
+  EXPECT_EQ(r.path.size(), 1u);
+}
+
+TEST(GridPlanner, BadInputIsAnInputError) {
+  auto expect_bad = [](GridProblem p, GridSearchOptions o = {}) {
+    EXPECT_THROW(solve_grid(p, o), InputError);
+  };
+  GridProblem p;
+  p.dims = 0;
+  expect_bad(p);
+  p.dims = 17;
+  expect_bad(p);
+  p.dims = 2;
+  p.extent = 1;
+  expect_bad(p);
+  p.extent = 70000;
+  expect_bad(p);
+  p.extent = 100;
+  p.start = std::vector<int>{1, 2, 3};
+  expect_bad(p);
+  p.start = std::vector<int>{1, 100};
+  expect_bad(p);
+  p.start.reset();
+  p.connectivity = Connectivity::full;
+  p.dims = 5;
+  expect_bad(p);
+  p.connectivity = Connectivity::seed_pairs;
+  GridSearchOptions o;
+  o.algorithm = GridAlgorithm::wastar;
+  o.weight = 0.5;
+  expect_bad(p, o);
+  o.algorithm = GridAlgorithm::astar;
+  o.weight = 2.0;
+  expect_bad(p, o);
+  EXPECT_THROW(parse_grid_algorithm("dfs"), InputError);
+  EXPECT_THROW(parse_coordinates("1,,2", "--start"), InputError);
+  EXPECT_THROW(parse_coordinates("1,x", "--start"), InputError);
+  EXPECT_THROW(parse_coordinates("", "--start"), InputError);
+  EXPECT_EQ(parse_coordinates("3,-4,5", "--start"), (std::vector<int>{3, -4, 5}));
+}
+
+TEST(GridPlanner, StartInsideAnObstacleIsRejected) {
+  GridProblem p;
+  p.dims = 2;
+  const GogField f(2, 100, p.gog);
+  for (int x = 0; x < 100; ++x)
+    if (!f.is_free(std::vector<int>{x, 50})) {
+      p.start = std::vector<int>{x, 50};
+      break;
+    }
+  ASSERT_TRUE(p.start.has_value());
+  try {
+    solve_grid(p, GridSearchOptions{});
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("inside an obstacle"), std::string::npos);
+  }
+}
+
+}  // namespace

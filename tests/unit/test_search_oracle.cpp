@@ -1,0 +1,119 @@
+// Every grid algorithm against the independent oracle on random small instances.
+#include <gtest/gtest.h>
+
+#include "hpcplan/core/splitmix64.hpp"
+#include "hpcplan/plan/grid_planner.hpp"
+#include "lattice_oracle.hpp"
+
+namespace {
+
+using namespace hpcplan;
+
+struct Instance {
+  GridProblem problem;
+  std::vector<int> start, goal;
+};
+
+int small_extent(int d) {
+  static const int extents[] = {0, 60, 60, 20, 10, 7, 5};
+  return extents[d];
+}
+
+Instance random_instance(std::uint64_t seed, int d, bool full) {
+  SplitMix64 rng(seed);
+  Instance in;
+  GridProblem& p = in.problem;
+  p.dims = d;
+  p.extent = small_extent(d);
+  p.gog.seed = rng.next();
+  p.gog.shift_v = static_cast<int>(rng.next_below(3));
+  p.gog.shift_p = static_cast<int>(rng.next_below(5));
+  p.gog.density = 0.15 + 0.4 * rng.next_unit();
+  p.connectivity = full ? Connectivity::full : Connectivity::seed_pairs;
+  const GogField field(d, p.extent, p.gog);
+  auto draw_free = [&] {
+    for (;;) {
+      std::vector<int> s(d);
+      for (auto& c : s) c = static_cast<int>(rng.next_below(p.extent));
+      if (field.is_free(s)) return s;
+    }
+  };
+  in.start = draw_free();
+  in.goal = draw_free();
+  p.start = in.start;
+  p.goal = in.goal;
+  return in;
+}
+
+GridReport run(const Instance& in, GridAlgorithm algo, HeuristicKind h = HeuristicKind::lattice,
+               double weight = 1.0) {
+  GridSearchOptions o;
+  o.algorithm = algo;
+  o.heuristic = h;
+  if (algo == GridAlgorithm::wastar) o.weight = weight;
+  o.keep_path = true;
+  return solve_grid(in.problem, o);
+}
+
+// Independent re-validation of a returned path: endpoints, legal moves, reported length.
+void expect_valid_path(const GridReport& r, const oracle::Lattice& o, const Instance& in) {
+  ASSERT_EQ(r.status, search::Status::solved);
+  ASSERT_FALSE(r.path.empty());
+  EXPECT_EQ(r.path.front(), in.start);
+  EXPECT_EQ(r.path.back(), in.goal);
+  EXPECT_EQ(r.hops + 1, r.path.size());
+  double length = 0;
+  for (std::size_t i = 1; i < r.path.size(); ++i) {
+    const double len = o.move_length(r.path[i - 1], r.path[i]);
+    ASSERT_GT(len, 0) << "illegal move at step " << i;
+    length += len;
+  }
+  EXPECT_NEAR(length, r.cost, 1e-9);
+}
+
+class OracleAgreement : public ::testing::TestWithParam<std::tuple<int, int, bool>> {};
+
+TEST_P(OracleAgreement, EveryAlgorithmMatchesTheOracle) {
+  const auto [d, trial, full] = GetParam();
+  const Instance in = random_instance(1000 * d + trial + (full ? 7777 : 0), d, full);
+  const GogField field(d, in.problem.extent, in.problem.gog);
+  const oracle::Lattice o(field, full);
+  const oracle::Answer best = o.dijkstra(in.start, in.goal);
+  const oracle::Answer fewest = o.bfs(in.start, in.goal);
+  ASSERT_EQ(best.reachable, fewest.reachable);
+
+  const GridReport astar = run(in, GridAlgorithm::astar);
+  const GridReport astar_euclid = run(in, GridAlgorithm::astar, HeuristicKind::euclidean);
+  const GridReport dijkstra = run(in, GridAlgorithm::dijkstra);
+  const GridReport bfs = run(in, GridAlgorithm::bfs);
+  if (!best.reachable) {
+    for (const auto* r : {&astar, &astar_euclid, &dijkstra, &bfs})
+      EXPECT_EQ(r->status, search::Status::no_path);
+    return;
+  }
+  for (const auto* r : {&astar, &astar_euclid, &dijkstra}) {
+    expect_valid_path(*r, o, in);
+    EXPECT_NEAR(r->cost, best.cost, 1e-9 * (1 + best.cost));
+  }
+  // The exact heuristic never expands more than Dijkstra.
+  EXPECT_LE(astar.counters.expanded, dijkstra.counters.expanded);
+  expect_valid_path(bfs, o, in);
+  EXPECT_EQ(static_cast<std::int64_t>(bfs.hops), fewest.hops);
+  EXPECT_LE(bfs.hops, astar.hops);
+  for (double w : {1.5, 3.0}) {
+    const GridReport wa = run(in, GridAlgorithm::wastar, HeuristicKind::lattice, w);
+    expect_valid_path(wa, o, in);
+    EXPECT_LE(wa.cost, w * best.cost + 1e-9);
+    EXPECT_GE(wa.cost, best.cost - 1e-9);
+  }
+}
+
+// 5 dimensions x 12 trials on the seed rule, plus full connectivity for d <= 4.
+INSTANTIATE_TEST_SUITE_P(SeedRule, OracleAgreement,
+                         ::testing::Combine(::testing::Range(2, 7), ::testing::Range(0, 12),
+                                            ::testing::Values(false)));
+INSTANTIATE_TEST_SUITE_P(FullConnectivity, OracleAgreement,
+                         ::testing::Combine(::testing::Range(2, 5), ::testing::Range(0, 4),
+                                            ::testing::Values(true)));
+
+}  // namespace
