@@ -54,6 +54,15 @@ struct ZeroHeuristic {
   }
 };
 
+// Mutable access to a map entry: tsl::robin_map exposes it as value(), the others as second.
+template <class Iterator>
+auto& mapped(const Iterator& it) {
+  if constexpr (requires { it.value(); })
+    return it.value();
+  else
+    return it->second;
+}
+
 template <class MapPolicy = DefaultVisitedMap, SearchGraph G, class Heuristic>
 Result<typename G::State> best_first_search(const G& graph, const typename G::State& start,
                                             const typename G::State& goal, const Heuristic& h,
@@ -160,10 +169,11 @@ Result<typename G::State> best_first_search(const G& graph, const typename G::St
       const Entry e = heap.back();
       heap.pop_back();
       auto it = visited.find(e.state);
-      if (it->second.closed || e.g > cost_value(it->second.g)) continue;  // stale duplicate
-      it->second.closed = true;
+      Node& node = mapped(it);
+      if (node.closed || e.g > cost_value(node.g)) continue;  // stale duplicate
+      node.closed = true;
       x = e.state;
-      gx = it->second.g;
+      gx = node.g;
       if (x == goal) return finish(Status::solved, &goal);
     }
     ++counters.expanded;
@@ -180,7 +190,7 @@ Result<typename G::State> best_first_search(const G& graph, const typename G::St
       const Cost gt = gx + cost;
       auto [it, inserted] = visited.try_emplace(t, Node{gt, m, false});
       if (!inserted) {
-        Node& node = it->second;
+        Node& node = mapped(it);
         if (is_fifo || cost_value(gt) + kImprovementEpsilon >= cost_value(node.g)) return;
         if (node.closed) {
           if (!reopen) return;

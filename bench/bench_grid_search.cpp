@@ -1,0 +1,87 @@
+// Google Benchmark suite for the serial grid engine. Throughput is measured on sustained
+// searches (Dijkstra from the default start until a fixed number of states is stored), so the
+// visited map is large and the figure is not an in-cache best case.
+#include <benchmark/benchmark.h>
+
+#include "hpcplan/plan/grid_planner_impl.hpp"
+#include "visited_maps.hpp"
+
+namespace {
+
+using namespace hpcplan;
+
+constexpr std::uint64_t kThroughputStates = 1'000'000;
+
+template <class MapPolicy>
+void run_and_count(benchmark::State& state, const GridProblem& p, const GridSearchOptions& o) {
+  std::uint64_t expanded = 0, generated = 0, checks = 0;
+  double search_s = 0;
+  for (auto _ : state) {
+    const GridReport r = solve_grid_with<MapPolicy>(p, o);
+    benchmark::DoNotOptimize(r.cost);
+    expanded += r.counters.expanded;
+    generated += r.counters.generated;
+    checks += r.counters.collision_checks;
+    search_s += r.counters.time_ms / 1e3;
+  }
+  // Rates over search time only (field set-up excluded, as the JSON's time_ms).
+  state.counters["generated_per_s"] = benchmark::Counter(generated / search_s);
+  state.counters["expanded_per_s"] = benchmark::Counter(expanded / search_s);
+  state.counters["checks_per_s"] = benchmark::Counter(checks / search_s);
+  state.counters["expanded"] = benchmark::Counter(static_cast<double>(expanded) / state.iterations());
+}
+
+GridProblem default_problem(int d) {
+  GridProblem p;
+  p.dims = d;
+  return p;
+}
+
+template <class MapPolicy>
+void BM_Throughput(benchmark::State& state) {
+  GridSearchOptions o;
+  o.algorithm = GridAlgorithm::dijkstra;
+  o.max_states = kThroughputStates;
+  run_and_count<MapPolicy>(state, default_problem(static_cast<int>(state.range(0))), o);
+}
+BENCHMARK(BM_Throughput<search::AbslFlatMap>)
+    ->Name("Throughput/absl")
+    ->DenseRange(2, 10, 1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Throughput<search::StdUnorderedMap>)
+    ->Name("Throughput/std_unordered")
+    ->Arg(6)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Throughput<bench::TslRobinMap>)
+    ->Name("Throughput/tsl_robin")
+    ->Arg(6)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void BM_DefaultProblem(benchmark::State& state) {
+  run_and_count<search::DefaultVisitedMap>(
+      state, default_problem(static_cast<int>(state.range(0))), GridSearchOptions{});
+}
+BENCHMARK(BM_DefaultProblem)->DenseRange(2, 10, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Expansions of A* with each heuristic on a denser field where the search must work.
+void BM_Heuristic(benchmark::State& state) {
+  GridProblem p = default_problem(static_cast<int>(state.range(0)));
+  p.gog.density = 0.7;
+  GridSearchOptions o;
+  o.heuristic = state.range(1) ? HeuristicKind::euclidean : HeuristicKind::lattice;
+  o.max_states = 4'000'000;
+  state.SetLabel(o.heuristic == HeuristicKind::lattice ? "lattice" : "euclidean");
+  run_and_count<search::DefaultVisitedMap>(state, p, o);
+}
+BENCHMARK(BM_Heuristic)
+    ->ArgsProduct({{2, 3, 4, 6}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();
