@@ -28,7 +28,8 @@ void run_and_count(benchmark::State& state, const GridProblem& p, const GridSear
   state.counters["generated_per_s"] = benchmark::Counter(generated / search_s);
   state.counters["expanded_per_s"] = benchmark::Counter(expanded / search_s);
   state.counters["checks_per_s"] = benchmark::Counter(checks / search_s);
-  state.counters["expanded"] = benchmark::Counter(static_cast<double>(expanded) / state.iterations());
+  state.counters["expanded"] =
+      benchmark::Counter(static_cast<double>(expanded) / state.iterations());
 }
 
 GridProblem default_problem(int d) {
@@ -61,8 +62,8 @@ BENCHMARK(BM_Throughput<bench::TslRobinMap>)
     ->UseRealTime();
 
 void BM_DefaultProblem(benchmark::State& state) {
-  run_and_count<search::DefaultVisitedMap>(
-      state, default_problem(static_cast<int>(state.range(0))), GridSearchOptions{});
+  run_and_count<search::DefaultVisitedMap>(state, default_problem(static_cast<int>(state.range(0))),
+                                           GridSearchOptions{});
 }
 BENCHMARK(BM_DefaultProblem)->DenseRange(2, 10, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
 

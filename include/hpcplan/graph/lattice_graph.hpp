@@ -177,12 +177,18 @@ class LatticeGraph {
     return t;
   }
 
-  template <class Emit>
-  void expand_seed_rule(const State& x, Emit& emit) const {
-    int c[kMaxDims];
+  // Decodes x into c and returns its GOG level sum, the base of every incremental check.
+  int unpack_with_level_sum(const State& x, int* c) const {
     layout_.unpack(x, c);
     int sum = 0;
     for (int a = 0; a < dims_; ++a) sum += tables_[a][c[a]];
+    return sum;
+  }
+
+  template <class Emit>
+  void expand_seed_rule(const State& x, Emit& emit) const {
+    int c[kMaxDims];
+    const int sum = unpack_with_level_sum(x, c);
     // change[a][s]: level-sum change of stepping axis a by s (s=0: -1, s=1: +1); free1 marks
     // one-axis neighbours that are in the box and free.
     int change[kMaxDims][2];
@@ -218,9 +224,7 @@ class LatticeGraph {
   template <class Emit>
   void expand_full(const State& x, Emit& emit) const {
     int c[kMaxDims];
-    layout_.unpack(x, c);
-    int sum = 0;
-    for (int a = 0; a < dims_; ++a) sum += tables_[a][c[a]];
+    const int sum = unpack_with_level_sum(x, c);
     bool free_cell[81];  // 3^4
     std::uint64_t checks = 0;
     const int centre = (full_cells_ - 1) / 2;

@@ -15,7 +15,8 @@
 namespace hpcplan {
 namespace detail {
 
-inline search::Options engine_options(const GridSearchOptions& o, double weight, std::uint64_t budget) {
+inline search::Options engine_options(const GridSearchOptions& o, double weight,
+                                      std::uint64_t budget) {
   search::Options e;
   e.max_states = budget;
   e.time_limit_s = o.time_limit_s;
@@ -46,14 +47,14 @@ void run_search(const GogField& field, const GridProblem& problem, const GridSea
   if (o.algorithm == GridAlgorithm::dijkstra || o.algorithm == GridAlgorithm::bfs) {
     r = search::best_first_search<MapPolicy>(graph, start, goal, search::ZeroHeuristic{}, eo);
   } else if (o.heuristic == HeuristicKind::euclidean) {
-    r = search::best_first_search<MapPolicy>(graph, start, goal,
-                                  EuclideanHeuristic<W>(graph.layout(), report.goal), eo);
+    r = search::best_first_search<MapPolicy>(
+        graph, start, goal, EuclideanHeuristic<W>(graph.layout(), report.goal), eo);
   } else if (problem.connectivity == Connectivity::full) {
-    r = search::best_first_search<MapPolicy>(graph, start, goal,
-                                  FullConnectivityHeuristic<W>(graph.layout(), report.goal), eo);
+    r = search::best_first_search<MapPolicy>(
+        graph, start, goal, FullConnectivityHeuristic<W>(graph.layout(), report.goal), eo);
   } else {
     r = search::best_first_search<MapPolicy>(graph, start, goal,
-                                  SeedRuleHeuristic<W>(graph.layout(), report.goal), eo);
+                                             SeedRuleHeuristic<W>(graph.layout(), report.goal), eo);
   }
   report.status = r.status;
   report.cost = r.cost;
