@@ -11,7 +11,9 @@
 #include <cstdint>
 #include <deque>
 #include <string>
+#include <tuple>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "hpcplan/core/error.hpp"
@@ -95,7 +97,7 @@ Result<typename G::State> best_first_search(const G& graph, const typename G::St
 
   typename MapPolicy::template type<State, Node, typename G::Hash> visited;
   std::vector<Entry> heap;
-  std::deque<State> fifo;
+  std::deque<std::pair<State, Cost>> fifo;  // BFS: state and its g, no map look-up to expand
   const bool is_fifo = options.frontier == Frontier::fifo;
   const bool reopen = options.reopen_closed && !is_fifo;
   const double weight = options.weight;
@@ -111,7 +113,7 @@ Result<typename G::State> best_first_search(const G& graph, const typename G::St
   };
   auto push = [&](const Cost& g, const State& s) {
     if (is_fifo) {
-      fifo.push_back(s);
+      fifo.emplace_back(s, g);
       open_size = fifo.size();
     } else {
       heap.push_back(Entry{priority(g, s), cost_value(g), s});
@@ -161,9 +163,8 @@ Result<typename G::State> best_first_search(const G& graph, const typename G::St
     State x;
     Cost gx;
     if (is_fifo) {
-      x = fifo.front();
+      std::tie(x, gx) = fifo.front();
       fifo.pop_front();
-      gx = visited.find(x)->second.g;
     } else {
       std::pop_heap(heap.begin(), heap.end(), lower_priority);
       const Entry e = heap.back();
