@@ -1,14 +1,27 @@
 #!/usr/bin/env python3
-"""Reads `hpcplan grid --json` objects (one per line) on stdin and prints a table."""
+"""Reads `hpcplan grid --json` objects (one per line) on stdin and prints a table.
+
+Distributed runs add the scheme, the workload deviation (max - min share of expansions,
+seed 002 Table IV), messages sent, and, with --compare-serial, the serial cost, search
+overhead and speedup measured in the same job."""
 import json
 import sys
 
 rows = [json.loads(line) for line in sys.stdin if line.strip()]
-header = f"{'d':>3} {'ranks':>5} {'status':>15} {'blocked':>8} {'cost':>10} {'quality':>8} {'expanded':>10} {'generated':>11} {'time ms':>9}"
+header = (f"{'d':>3} {'algo':>8} {'ranks':>5} {'scheme':>10} {'status':>9} {'cost':>9} {'quality':>7} "
+          f"{'expanded':>9} {'time ms':>8} {'dev %':>6} {'msgs':>6} {'serial':>9} {'overhead':>8} {'speedup':>7}")
 print(header)
 print("-" * len(header))
 for r in rows:
     cost = f"{r['cost']:.3f}" if r["cost"] is not None else "-"
     quality = f"{r['quality']:.4f}" if r["quality"] is not None else "-"
-    print(f"{r['dims']:>3} {r['ranks']:>5} {r['status']:>15} {100 * r['blocked_fraction']:>7.1f}% {cost:>10} "
-          f"{quality:>8} {r['expanded']:>10} {r['generated']:>11} {r['time_ms']:>9.2f}")
+    dist = r.get("distributed")
+    dev = f"{dist['workload_deviation_percent']:.2f}" if dist else "-"
+    msgs = f"{dist['messages_sent']}" if dist else "-"
+    ref = r.get("serial_reference")
+    serial = f"{ref['cost']:.3f}" if ref and ref["cost"] is not None else "-"
+    overhead = f"{ref['search_overhead']:.3f}" if ref and ref["search_overhead"] is not None else "-"
+    speedup = f"{ref['speedup']:.2f}x" if ref and ref["speedup"] is not None else "-"
+    print(f"{r['dims']:>3} {r['algo']:>8} {r['ranks']:>5} {r['scheme']:>10} {r['status']:>9} {cost:>9} "
+          f"{quality:>7} {r['expanded']:>9} {r['time_ms']:>8.2f} {dev:>6} {msgs:>6} {serial:>9} "
+          f"{overhead:>8} {speedup:>7}")

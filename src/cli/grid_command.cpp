@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/dist/grid_planner_mpi.hpp"
 #include "hpcplan/io/atomic_file.hpp"
 #include "hpcplan/io/grid_report_json.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
@@ -21,6 +22,8 @@ struct GridArgs {
   std::string start, goal, output;
   double weight = 2.0;
   bool json = false;
+  dist::DistGridOptions dist;
+  std::string mode = "async";
 };
 
 }  // namespace
@@ -54,11 +57,38 @@ Action register_grid_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--gog-shift-p", p.gog.shift_p, "GOG b_p")->capture_default_str();
   cmd->add_option("--gog-shift-v", p.gog.shift_v, "GOG b_v")->capture_default_str();
+  auto& d = args->dist;
+  const char* mpi = "Distributed (under mpirun/srun)";
+  cmd->add_option("--mode", args->mode,
+                  "Distributed A*/Dijkstra schedule: async (HDA*) | bulk (seed 002 Alg. 6-7); "
+                  "BFS is always level-synchronous")
+      ->capture_default_str()
+      ->group(mpi);
+  cmd->add_option("--owner-coarsen", d.coarsen_shift,
+                  "Ownership hashes each coordinate >> k, keeping 2^k-wide cells on one rank")
+      ->capture_default_str()
+      ->group(mpi);
+  cmd->add_option("--batch", d.batch, "Async: records per message")
+      ->capture_default_str()
+      ->group(mpi);
+  cmd->add_option("--batch-age-ms", d.batch_age_ms, "Async: longest a record waits to be sent")
+      ->capture_default_str()
+      ->group(mpi);
+  cmd->add_option("--sync-every", d.sync_every, "Bulk: expansions between exchanges")
+      ->capture_default_str()
+      ->group(mpi);
+  cmd->add_option("--sent-filter", d.sent_filter_log2,
+                  "log2 slots of the filter that drops re-sent duplicate states (0 = off)")
+      ->capture_default_str()
+      ->group(mpi);
+  cmd->add_flag("--compare-serial", d.compare_serial,
+                "Rank 0 also solves serially first and reports search overhead and speedup")
+      ->group(mpi);
   cmd->add_flag("--path", args->options.keep_path, "Include the path");
   cmd->add_flag("--json", args->json, "Print one JSON object instead of a summary");
   cmd->add_option("--output", args->output, "Also write the JSON result to this file (atomically)");
 
-  return [args, weight]() {
+  return [args, weight](const Context& context) {
     GridArgs& a = *args;
     a.options.algorithm = parse_grid_algorithm(a.algo);
     a.options.heuristic = parse_heuristic(a.heuristic);
@@ -67,7 +97,13 @@ Action register_grid_command(CLI::App& app) {
     if (!a.start.empty()) a.problem.start = parse_coordinates(a.start, "--start");
     if (!a.goal.empty()) a.problem.goal = parse_coordinates(a.goal, "--goal");
 
-    const GridReport report = solve_grid(a.problem, a.options);
+    a.dist.scheme = dist::parse_scheme(a.mode);
+    dist::validate(a.dist);
+
+    const GridReport report =
+        context.comm ? dist::solve_grid_distributed(a.problem, a.options, a.dist, *context.comm)
+                     : solve_grid(a.problem, a.options);
+    if (!context.is_root()) return kExitOk;
     const std::string json = to_json(report, a.options.keep_path).dump() + "\n";
     if (!a.output.empty()) write_file_atomically(a.output, json);
     if (a.json)

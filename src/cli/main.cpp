@@ -1,7 +1,10 @@
-// hpcplan: one executable, one subcommand per planning setting.
+// hpcplan: one executable, one subcommand per planning setting. Started by an MPI launcher
+// (mpirun, srun), it initialises MPI and the grid planner runs distributed over the ranks;
+// otherwise it runs serially without touching MPI.
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <optional>
 #include <string>
 
 #include "commands.hpp"
@@ -25,26 +28,48 @@ int report(int code, const std::string& message) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::optional<hpcplan::mpi::Session> session;
+  std::optional<hpcplan::mpi::Communicator> comm;
+  try {
+    if (hpcplan::mpi::launched_by_mpi()) {
+      session.emplace(argc, argv);
+      comm.emplace();
+    }
+  } catch (const std::exception& e) {
+    return report(hpcplan::kExitRunFailure, e.what());
+  }
+  const hpcplan::cli::Context context{comm ? &*comm : nullptr};
+  const bool root = context.is_root();
+  const bool many_ranks = comm && comm->size() > 1;
+
   CLI::App app{"hpcplan: HPC motion planning on implicit grids, sampling planners and fluids"};
   app.require_subcommand(1);
   hpcplan::cli::Action grid = hpcplan::cli::register_grid_command(app);
+  // Bad input is detected identically on every rank before any communication, so every rank
+  // returns and only rank 0 speaks.
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    return report(hpcplan::kExitBadInput, e.what());
+    if (e.get_exit_code() == 0) return root ? app.exit(e) : 0;  // --help
+    return root ? report(hpcplan::kExitBadInput, e.what()) : hpcplan::kExitBadInput;
   }
+  // A failure during the search may hit one rank only while the others wait for it in a
+  // collective: such a rank ends the whole job rather than leave them hanging.
+  auto fail = [&](int code, const std::string& message) {
+    if (!many_ranks) return report(code, message);
+    report(code, "rank " + std::to_string(comm->rank()) + ": " + message);
+    comm->abort(code);
+  };
   try {
-    if (app.got_subcommand("grid")) return grid();
-    return report(hpcplan::kExitBadInput, "no subcommand given");
+    if (app.got_subcommand("grid")) return grid(context);
+    return root ? report(hpcplan::kExitBadInput, "no subcommand given") : hpcplan::kExitBadInput;
   } catch (const hpcplan::InputError& e) {
-    return report(hpcplan::kExitBadInput, e.what());
+    return root ? report(hpcplan::kExitBadInput, e.what()) : hpcplan::kExitBadInput;
   } catch (const hpcplan::RunError& e) {
-    return report(hpcplan::kExitRunFailure, e.what());
+    return fail(hpcplan::kExitRunFailure, e.what());
   } catch (const std::bad_alloc&) {
-    return report(hpcplan::kExitRunFailure,
-                  "out of memory; lower --max-states or the problem size");
+    return fail(hpcplan::kExitRunFailure, "out of memory; lower --max-states or the problem size");
   } catch (const std::exception& e) {
-    return report(hpcplan::kExitRunFailure, e.what());
+    return fail(hpcplan::kExitRunFailure, e.what());
   }
 }

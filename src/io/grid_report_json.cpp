@@ -1,11 +1,60 @@
 #include "hpcplan/io/grid_report_json.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
 #include "hpcplan/core/format.hpp"
 
 namespace hpcplan {
+namespace {
+
+nlohmann::json distributed_json(const GridReport& r) {
+  nlohmann::json d;
+  d["ownership"] = {{"hash", "splitmix64"}, {"coarsen_shift", r.coarsen_shift}};
+  d["batch"] = r.batch;
+  d["batch_age_ms"] = r.batch_age_ms;
+  d["sync_every"] = r.sync_every;
+  d["workload_deviation_percent"] = workload_deviation_percent(r.per_rank);
+  std::uint64_t messages = 0, bytes = 0, records = 0;
+  double wait = 0.0;
+  nlohmann::json ranks = nlohmann::json::array();
+  for (std::size_t i = 0; i < r.per_rank.size(); ++i) {
+    const auto& k = r.per_rank[i];
+    messages += k.messages_sent;
+    bytes += k.bytes_sent;
+    records += k.records_sent;
+    wait += k.wait_ms;
+    ranks.push_back({{"rank", i},
+                     {"expanded", k.expanded},
+                     {"generated", k.generated},
+                     {"collision_checks", k.collision_checks},
+                     {"states_stored", k.states_stored},
+                     {"peak_open", k.peak_open},
+                     {"reopened", k.reopened},
+                     {"messages_sent", k.messages_sent},
+                     {"messages_received", k.messages_received},
+                     {"bytes_sent", k.bytes_sent},
+                     {"bytes_received", k.bytes_received},
+                     {"records_sent", k.records_sent},
+                     {"records_received", k.records_received},
+                     {"records_filtered", k.records_filtered},
+                     {"sync_rounds", k.sync_rounds},
+                     {"wait_ms", k.wait_ms},
+                     {"search_ms", k.search_ms}});
+  }
+  const double expanded = static_cast<double>(std::max<std::uint64_t>(1, r.counters.expanded));
+  d["messages_sent"] = messages;
+  d["bytes_sent"] = bytes;
+  d["records_sent"] = records;
+  d["messages_per_expansion"] = static_cast<double>(messages) / expanded;
+  d["bytes_per_expansion"] = static_cast<double>(bytes) / expanded;
+  d["wait_ms_total"] = wait;
+  d["per_rank"] = ranks;
+  return d;
+}
+
+}  // namespace
 
 nlohmann::json to_json(const GridReport& r, bool include_path) {
   nlohmann::json j;
@@ -43,6 +92,25 @@ nlohmann::json to_json(const GridReport& r, bool include_path) {
   j["ranks"] = r.ranks;
   j["key_words"] = r.key_words;
   j["visited_map"] = r.visited_map;
+  j["scheme"] = r.scheme;
+  if (r.scheme != "serial") j["distributed"] = distributed_json(r);
+  if (r.has_serial_reference) {
+    nlohmann::json s;
+    const bool ok = r.serial_status == search::Status::solved;
+    s["status"] = std::string(search::to_string(r.serial_status));
+    s["cost"] = ok ? nlohmann::json(r.serial_cost) : nlohmann::json(nullptr);
+    s["hops"] = ok ? nlohmann::json(r.serial_hops) : nlohmann::json(nullptr);
+    s["expanded"] = r.serial_expanded;
+    s["time_ms"] = r.serial_time_ms;
+    // Search overhead: how many more states the ranks together expanded than one process.
+    s["search_overhead"] = r.serial_expanded
+                               ? nlohmann::json(static_cast<double>(r.counters.expanded) /
+                                                static_cast<double>(r.serial_expanded))
+                               : nlohmann::json(nullptr);
+    s["speedup"] = r.counters.time_ms > 0 ? nlohmann::json(r.serial_time_ms / r.counters.time_ms)
+                                          : nlohmann::json(nullptr);
+    j["serial_reference"] = s;
+  }
   if (include_path) j["path"] = r.path;
   return j;
 }
@@ -76,6 +144,28 @@ std::string to_summary(const GridReport& r) {
   std::snprintf(line, sizeof line, "  time       %.3f ms search, %.3f ms set-up\n",
                 r.counters.time_ms, r.setup_ms);
   o << line;
+  if (r.scheme != "serial") {
+    std::uint64_t messages = 0, bytes = 0;
+    for (const auto& k : r.per_rank) {
+      messages += k.messages_sent;
+      bytes += k.bytes_sent;
+    }
+    std::snprintf(line, sizeof line,
+                  "  ranks      %d (%s, owner coarsen %d): workload deviation %.2f%%, %llu "
+                  "messages, %.1f MB sent\n",
+                  r.ranks, r.scheme.c_str(), r.coarsen_shift,
+                  workload_deviation_percent(r.per_rank), static_cast<unsigned long long>(messages),
+                  bytes / 1e6);
+    o << line;
+  }
+  if (r.has_serial_reference) {
+    std::snprintf(line, sizeof line,
+                  "  serial     %s, cost %.4f, %llu expanded, %.3f ms (speedup %.2fx)\n",
+                  std::string(search::to_string(r.serial_status)).c_str(), r.serial_cost,
+                  static_cast<unsigned long long>(r.serial_expanded), r.serial_time_ms,
+                  r.counters.time_ms > 0 ? r.serial_time_ms / r.counters.time_ms : 0.0);
+    o << line;
+  }
   if (!r.path.empty()) {
     o << "  path      ";
     for (const auto& s : r.path) o << " " << coords(s);

@@ -31,6 +31,20 @@ struct GridReport {
   std::uint64_t max_states = 0;
   std::string visited_map;
   int ranks = 1;
+  // Distributed runs: how states were spread and exchanged.
+  std::string scheme = "serial";  // serial | async | bulk_sync | level_sync
+  int coarsen_shift = 0;
+  std::uint64_t batch = 0;
+  double batch_age_ms = 0.0;
+  std::uint64_t sync_every = 0;
+  std::vector<search::RankCounters> per_rank;
+  // Serial reference run of the same problem (distributed runs with --compare-serial).
+  bool has_serial_reference = false;
+  search::Status serial_status = search::Status::no_path;
+  double serial_cost = 0.0;
+  std::uint64_t serial_hops = 0;
+  std::uint64_t serial_expanded = 0;
+  double serial_time_ms = 0.0;
   // Result.
   search::Status status = search::Status::no_path;
   double cost = 0.0;
@@ -43,5 +57,17 @@ struct GridReport {
 };
 
 GridReport solve_grid(const GridProblem& problem, const GridSearchOptions& options);
+
+// The parts of solving every engine shares (serial and distributed): describes the problem
+// and options in a report, resolves start and goal (InputError if blocked), and sets the
+// state budget. The derived budget (half of available memory) is split among
+// `ranks_sharing_memory` processes.
+GridReport prepare_grid_report(const GridProblem& problem, const GridSearchOptions& options,
+                               const GogField& field, int ranks_sharing_memory);
+// Derives quality from cost once the search has filled the result.
+void finish_grid_report(GridReport& report);
+// Workload deviation of seed 002 Table IV: max - min of the ranks' shares of expansions, in
+// percent (0 for one rank or no expansions).
+double workload_deviation_percent(const std::vector<search::RankCounters>& per_rank);
 
 }  // namespace hpcplan

@@ -1,11 +1,7 @@
 #pragma once
 // The grid planner's implementation, as templates over the visited-map policy so benchmarks
 // can run the identical planner with another hash map. Users call solve_grid().
-#include <cmath>
 
-#include "hpcplan/core/error.hpp"
-#include "hpcplan/core/format.hpp"
-#include "hpcplan/core/memory.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/graph/lattice_graph.hpp"
 #include "hpcplan/graph/lattice_heuristic.hpp"
@@ -72,57 +68,9 @@ template <class MapPolicy>
 GridReport solve_grid_with(const GridProblem& problem, const GridSearchOptions& options) {
   validate(problem, options);
   Stopwatch setup;
-  GridReport report;
   const GogField field(problem.dims, problem.extent, problem.gog);
-  report.dims = problem.dims;
-  report.extent = problem.extent;
-  report.seed = problem.gog.seed;
-  report.threshold = field.threshold();
-  report.blocked_fraction = field.blocked_fraction();
-  report.shift_p = problem.gog.shift_p;
-  report.shift_v = problem.gog.shift_v;
-  report.connectivity = std::string(to_string(problem.connectivity));
-  report.algorithm = std::string(to_string(options.algorithm));
-  report.heuristic =
-      options.algorithm == GridAlgorithm::dijkstra || options.algorithm == GridAlgorithm::bfs
-          ? "none"
-          : std::string(to_string(options.heuristic));
-  report.weight = options.algorithm == GridAlgorithm::wastar ? options.weight.value_or(2.0) : 1.0;
-
-  auto endpoint = [&](const std::optional<std::vector<int>>& given, int corner, int direction,
-                      const char* what, bool& adjusted) {
-    if (given) {
-      if (!field.is_free(*given)) {
-        throw InputError(std::string("--") + what + " (" + join_coordinates(*given) +
-                         ") is inside an obstacle");
-      }
-      return *given;
-    }
-    std::vector<int> nominal(problem.dims, corner);
-    auto free = adjust_to_free(field, nominal, direction, what);
-    adjusted = free != nominal;
-    return free;
-  };
-  report.start = endpoint(problem.start, 0, +1, "start", report.start_adjusted);
-  report.goal = endpoint(problem.goal, problem.extent - 1, -1, "goal", report.goal_adjusted);
-
-  double sq = 0.0;
-  for (int i = 0; i < problem.dims; ++i) {
-    const double d = report.goal[i] - report.start[i];
-    sq += d * d;
-  }
-  report.straight_line = std::sqrt(sq);
-
-  const KeyLayout layout(problem.dims, problem.extent);
-  report.key_words = layout.words() <= 1 ? 1 : layout.words() <= 2 ? 2 : 4;
-  report.max_states = options.max_states;
-  if (report.max_states == 0) {
-    // Stop with budget_exceeded well before the kernel's OOM killer would.
-    const std::uint64_t avail = available_memory_bytes();
-    report.max_states = avail ? avail / 2 / bytes_per_state(report.key_words) : 100'000'000;
-  }
+  GridReport report = prepare_grid_report(problem, options, field, 1);
   report.setup_ms = setup.milliseconds();
-
   switch (report.key_words) {
     case 1:
       detail::run_search<MapPolicy, 1>(field, problem, options, report);
@@ -134,8 +82,7 @@ GridReport solve_grid_with(const GridProblem& problem, const GridSearchOptions& 
       detail::run_search<MapPolicy, 4>(field, problem, options, report);
       break;
   }
-  if (report.status == search::Status::solved)
-    report.quality = report.straight_line > 0 ? report.cost / report.straight_line : 1.0;
+  finish_grid_report(report);
   return report;
 }
 

@@ -158,9 +158,13 @@ class SearchStore {
     State state;
   };
   // Heap order: smaller f first; among equal f, larger g first (deeper, closer to the goal).
-  static bool lower_priority(const Entry& a, const Entry& b) {
-    return a.f > b.f || (a.f == b.f && a.g < b.g);
-  }
+  // (A function object, not a function pointer, so the heap operations inline it.)
+  struct LowerPriority {
+    bool operator()(const Entry& a, const Entry& b) const {
+      return a.f > b.f || (a.f == b.f && a.g < b.g);
+    }
+  };
+  static constexpr LowerPriority lower_priority{};
   // Differences below this are rounding, not better paths, and must not trigger a reopening
   // (exact cost types never produce them; plain doubles can).
   static constexpr double kImprovementEpsilon = 1e-9;

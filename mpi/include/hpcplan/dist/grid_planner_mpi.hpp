@@ -1,0 +1,31 @@
+#pragma once
+// The grid planner across MPI ranks: the same problem, options and report as solve_grid(),
+// searched by the distributed engine. Collective: every rank calls it with the same
+// arguments; the report is complete on rank 0 (other ranks hold their own share).
+#include "hpcplan/dist/distributed_search.hpp"
+#include "hpcplan/mpi/communicator.hpp"
+#include "hpcplan/plan/grid_planner.hpp"
+
+namespace hpcplan::dist {
+
+struct DistGridOptions {
+  // async or bulk_sync for A*, weighted A* and Dijkstra; BFS is always level_sync.
+  Scheme scheme = Scheme::async;
+  int coarsen_shift = 0;  // ownership hashes coordinates >> k (0 = the state itself)
+  std::size_t batch = 512;
+  double batch_age_ms = 0.5;
+  std::uint64_t sync_every = 4096;
+  int sent_filter_log2 = 16;    // duplicate filter on outgoing records (0 = off)
+  bool compare_serial = false;  // rank 0 also solves serially first, for overhead and speedup
+};
+
+Scheme parse_scheme(std::string_view name);  // InputError if unknown
+std::string_view to_string(Scheme s);
+
+// InputError for impossible distributed options.
+void validate(const DistGridOptions& options);
+
+GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOptions& options,
+                                  const DistGridOptions& dist, const mpi::Communicator& comm);
+
+}  // namespace hpcplan::dist

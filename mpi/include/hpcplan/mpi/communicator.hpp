@@ -1,0 +1,57 @@
+#pragma once
+// The small set of MPI operations the distributed searches need, behind one type, so the
+// search code never calls MPI itself (as Graph500's reference BFS keeps its communication
+// layer apart from the algorithm).
+#include <mpi.h>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace hpcplan::mpi {
+
+// True when this process was started by an MPI launcher (mpirun, mpiexec, srun): only then
+// does hpcplan initialise MPI, so plain runs stay free of MPI start-up cost.
+bool launched_by_mpi();
+
+// MPI_Init / MPI_Finalize for the process's lifetime. Errors on MPI calls return codes
+// (MPI_ERRORS_RETURN is not used: a failed call aborts the job, which is what a rank
+// failure must do so that no other rank waits forever).
+class Session {
+ public:
+  Session(int& argc, char**& argv);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+};
+
+class Communicator {
+ public:
+  explicit Communicator(MPI_Comm comm = MPI_COMM_WORLD);
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  MPI_Comm handle() const { return comm_; }
+  // Ranks of this job on this node (they share its memory).
+  int ranks_on_node() const { return ranks_on_node_; }
+
+  void barrier() const;
+  double allreduce_min(double v) const;
+  double allreduce_max(double v) const;
+  std::uint64_t allreduce_sum(std::uint64_t v) const;
+  // Element-wise sum of a small vector on every rank.
+  void allreduce_sum(std::span<std::uint64_t> values) const;
+  void broadcast(void* data, int bytes, int root) const;
+  // Gathers `bytes` from every rank on `root` (result.size() == size*bytes there).
+  std::vector<unsigned char> gather(const void* data, int bytes, int root) const;
+  // Ends the whole job: for failures one rank cannot recover from alone.
+  [[noreturn]] void abort(int code) const;
+
+ private:
+  MPI_Comm comm_;
+  int rank_ = 0;
+  int size_ = 1;
+  int ranks_on_node_ = 1;
+};
+
+}  // namespace hpcplan::mpi

@@ -1,0 +1,79 @@
+#include "hpcplan/mpi/communicator.hpp"
+
+#include <cstdlib>
+
+#include "hpcplan/core/error.hpp"
+
+namespace hpcplan::mpi {
+
+bool launched_by_mpi() {
+  // Open MPI's mpirun, PMIx launchers (srun --mpi=pmix, prte) and PMI-1/2 launchers.
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+    if (std::getenv(v) != nullptr) return true;
+  return false;
+}
+
+Session::Session(int& argc, char**& argv) {
+  int provided = 0;
+  if (MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS)
+    throw RunError("MPI_Init failed");
+}
+
+Session::~Session() {
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (!finalized) MPI_Finalize();
+}
+
+Communicator::Communicator(MPI_Comm comm) : comm_(comm) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &size_);
+  MPI_Comm node;
+  MPI_Comm_split_type(comm_, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
+  MPI_Comm_size(node, &ranks_on_node_);
+  MPI_Comm_free(&node);
+}
+
+void Communicator::barrier() const {
+  MPI_Barrier(comm_);
+}
+
+double Communicator::allreduce_min(double v) const {
+  double out = v;
+  MPI_Allreduce(&v, &out, 1, MPI_DOUBLE, MPI_MIN, comm_);
+  return out;
+}
+
+double Communicator::allreduce_max(double v) const {
+  double out = v;
+  MPI_Allreduce(&v, &out, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  return out;
+}
+
+std::uint64_t Communicator::allreduce_sum(std::uint64_t v) const {
+  std::uint64_t out = v;
+  MPI_Allreduce(&v, &out, 1, MPI_UINT64_T, MPI_SUM, comm_);
+  return out;
+}
+
+void Communicator::allreduce_sum(std::span<std::uint64_t> values) const {
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_UINT64_T, MPI_SUM,
+                comm_);
+}
+
+void Communicator::broadcast(void* data, int bytes, int root) const {
+  MPI_Bcast(data, bytes, MPI_BYTE, root, comm_);
+}
+
+std::vector<unsigned char> Communicator::gather(const void* data, int bytes, int root) const {
+  std::vector<unsigned char> out(rank_ == root ? static_cast<std::size_t>(bytes) * size_ : 0);
+  MPI_Gather(data, bytes, MPI_BYTE, out.data(), bytes, MPI_BYTE, root, comm_);
+  return out;
+}
+
+void Communicator::abort(int code) const {
+  MPI_Abort(comm_, code);
+  std::abort();
+}
+
+}  // namespace hpcplan::mpi

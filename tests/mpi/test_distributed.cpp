@@ -1,0 +1,274 @@
+// Distributed grid search against the serial engine. The binary runs under
+// mpirun -np P (ctest runs it for P = 1, 2, 4, 8); every rank runs every test, so the
+// collective calls match, and checks on the full report are made on rank 0. Tests never stop
+// early on one rank only (EXPECT, not ASSERT, around collectives), so a failure cannot turn
+// into a hang; ctest's timeout guards the rest.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+
+#include "hpcplan/core/splitmix64.hpp"
+#include "hpcplan/dist/grid_planner_mpi.hpp"
+#include "hpcplan/dist/ownership.hpp"
+#include "hpcplan/mpi/communicator.hpp"
+#include "hpcplan/plan/grid_planner.hpp"
+
+namespace {
+
+using namespace hpcplan;
+
+const mpi::Communicator* g_comm = nullptr;
+bool root() {
+  return g_comm->rank() == 0;
+}
+
+// Independent of the engines: consecutive states differ by one step in one or two axes
+// (any number for full connectivity) and every corner of the move's unit cell is free.
+void expect_valid_path(const GridReport& r, const GridProblem& p) {
+  ASSERT_FALSE(r.path.empty());
+  EXPECT_EQ(r.path.front(), r.start);
+  EXPECT_EQ(r.path.back(), r.goal);
+  const GogField field(p.dims, p.extent, p.gog);
+  double length = 0.0;
+  for (std::size_t i = 1; i < r.path.size(); ++i) {
+    std::vector<int> axes;
+    for (int a = 0; a < p.dims; ++a) {
+      const int diff = r.path[i][a] - r.path[i - 1][a];
+      ASSERT_LE(std::abs(diff), 1);
+      if (diff != 0) axes.push_back(a);
+    }
+    ASSERT_FALSE(axes.empty());
+    if (p.connectivity == Connectivity::seed_pairs) {
+      ASSERT_LE(axes.size(), 2u);
+    }
+    for (unsigned subset = 0; subset < (1u << axes.size()); ++subset) {
+      std::vector<int> corner = r.path[i - 1];
+      for (std::size_t j = 0; j < axes.size(); ++j)
+        if (subset & (1u << j)) corner[axes[j]] = r.path[i][axes[j]];
+      ASSERT_TRUE(field.is_free(corner)) << "path crosses an obstacle at step " << i;
+    }
+    length += std::sqrt(static_cast<double>(axes.size()));
+  }
+  EXPECT_NEAR(length, r.cost, 1e-9 * (1 + r.cost));
+}
+
+int extent_for(int d) {
+  static const int table[] = {0, 0, 40, 16, 9, 6, 5, 4, 4};
+  return table[d];
+}
+
+struct Config {
+  const char* algo;
+  dist::Scheme scheme;
+  int coarsen;
+};
+
+TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
+  const Config configs[] = {
+      {"astar", dist::Scheme::async, 0},        {"astar", dist::Scheme::bulk_sync, 0},
+      {"astar", dist::Scheme::async, 1},        {"dijkstra", dist::Scheme::async, 0},
+      {"dijkstra", dist::Scheme::bulk_sync, 1}, {"wastar", dist::Scheme::async, 0},
+      {"wastar", dist::Scheme::bulk_sync, 0},   {"bfs", dist::Scheme::level_sync, 0},
+      {"bfs", dist::Scheme::level_sync, 1},
+  };
+  SplitMix64 rng(2026);
+  int solved = 0, compared = 0;
+  for (int d = 2; d <= 8; ++d) {
+    for (int instance = 0; instance < 2; ++instance) {
+      GridProblem p;
+      p.dims = d;
+      p.extent = extent_for(d);
+      p.gog.seed = rng.next();
+      p.gog.density = 0.3 + 0.4 * rng.next_unit();
+      if (d <= 3 && instance == 1) p.connectivity = Connectivity::full;
+      for (const Config& c : configs) {
+        GridSearchOptions o;
+        o.algorithm = parse_grid_algorithm(c.algo);
+        o.keep_path = true;
+        if (o.algorithm == GridAlgorithm::wastar) o.weight = 1.8;
+        dist::DistGridOptions dopt;
+        dopt.scheme = c.scheme == dist::Scheme::level_sync ? dist::Scheme::async : c.scheme;
+        dopt.coarsen_shift = c.coarsen;
+        dopt.batch = 1 + rng.next_below(64);  // small batches: many messages in flight
+        const GridReport r = dist::solve_grid_distributed(p, o, dopt, *g_comm);
+        if (!root()) continue;
+        GridSearchOptions so = o;
+        if (o.algorithm == GridAlgorithm::wastar) {
+          so.algorithm = GridAlgorithm::astar;
+          so.weight.reset();
+        }
+        const GridReport s = solve_grid(p, so);  // the optimum (or fewest hops for BFS)
+        SCOPED_TRACE(::testing::Message()
+                     << "d=" << d << " seed=" << p.gog.seed << " algo=" << c.algo
+                     << " scheme=" << r.scheme << " coarsen=" << c.coarsen << " ranks=" << r.ranks);
+        ++compared;
+        EXPECT_EQ(r.status, s.status);
+        if (r.status != search::Status::solved || s.status != search::Status::solved) continue;
+        ++solved;
+        expect_valid_path(r, p);
+        if (o.algorithm == GridAlgorithm::bfs) {
+          EXPECT_EQ(r.hops, s.hops);
+        } else if (o.algorithm == GridAlgorithm::wastar) {
+          EXPECT_GE(r.cost, s.cost - 1e-9);
+          EXPECT_LE(r.cost, 1.8 * s.cost + 1e-9);
+        } else {
+          EXPECT_NEAR(r.cost, s.cost, 1e-9 * (1 + s.cost));
+        }
+        std::uint64_t expanded = 0;
+        for (const auto& k : r.per_rank) expanded += k.expanded;
+        EXPECT_EQ(expanded, r.counters.expanded);
+        EXPECT_EQ(r.per_rank.size(), static_cast<std::size_t>(g_comm->size()));
+      }
+    }
+  }
+  if (root()) {
+    std::printf("compared %d distributed runs with serial, %d solved\n", compared, solved);
+    EXPECT_GE(compared, 100);
+    EXPECT_GE(solved, compared / 2) << "too few solvable instances to mean anything";
+  }
+}
+
+// Finds a 1D field with a blocked cell between two free ends: no path can cross it.
+GridProblem walled_line() {
+  for (std::uint64_t seed = 1;; ++seed) {
+    GridProblem p;
+    p.dims = 1;
+    p.extent = 64;
+    p.gog.seed = seed;
+    p.gog.shift_v = 2;
+    p.gog.threshold = 2;
+    const GogField f(1, 64, p.gog);
+    if (!f.is_free(std::vector<int>{0}) || !f.is_free(std::vector<int>{63})) continue;
+    for (int c = 1; c + 1 < 64; ++c)
+      if (!f.is_free(std::vector<int>{c})) {
+        p.start = std::vector<int>{0};
+        p.goal = std::vector<int>{63};
+        return p;
+      }
+  }
+}
+
+TEST(Distributed, NoPathIsAgreedByEveryRankForEveryScheme) {
+  const GridProblem p = walled_line();
+  for (const char* algo : {"astar", "wastar", "dijkstra", "bfs"})
+    for (auto scheme : {dist::Scheme::async, dist::Scheme::bulk_sync}) {
+      GridSearchOptions o;
+      o.algorithm = parse_grid_algorithm(algo);
+      dist::DistGridOptions d;
+      d.scheme = scheme;
+      const GridReport r = dist::solve_grid_distributed(p, o, d, *g_comm);
+      // Every rank learns the outcome, not only rank 0.
+      EXPECT_EQ(r.status, search::Status::no_path) << algo;
+    }
+}
+
+TEST(Distributed, BudgetExceededStopsEveryRank) {
+  GridProblem p;
+  p.dims = 4;
+  p.extent = 30;
+  for (const char* algo : {"dijkstra", "bfs", "astar"})
+    for (auto scheme : {dist::Scheme::async, dist::Scheme::bulk_sync}) {
+      GridSearchOptions o;
+      o.algorithm = parse_grid_algorithm(algo);
+      o.max_states = 2000;
+      dist::DistGridOptions d;
+      d.scheme = scheme;
+      const GridReport r = dist::solve_grid_distributed(p, o, d, *g_comm);
+      EXPECT_EQ(r.status, search::Status::budget_exceeded) << algo;
+      if (root()) {
+        for (const auto& k : r.per_rank)
+          EXPECT_LE(k.states_stored, 2000u / g_comm->size() + 2) << algo;
+      }
+    }
+}
+
+TEST(Distributed, TimeLimitStopsEveryRank) {
+  GridProblem p;
+  p.dims = 6;
+  p.extent = 40;  // millions of states: Dijkstra cannot finish in 0.2 s
+  for (auto scheme : {dist::Scheme::async, dist::Scheme::bulk_sync}) {
+    GridSearchOptions o;
+    o.algorithm = GridAlgorithm::dijkstra;
+    o.time_limit_s = 0.2;
+    dist::DistGridOptions d;
+    d.scheme = scheme;
+    const GridReport r = dist::solve_grid_distributed(p, o, d, *g_comm);
+    EXPECT_EQ(r.status, search::Status::timeout);
+    if (root()) {
+      EXPECT_LT(r.counters.time_ms, 5000.0);
+    }
+  }
+}
+
+TEST(Distributed, StartEqualsGoal) {
+  GridProblem p;
+  p.dims = 3;
+  p.extent = 10;
+  const GogField field(3, 10, p.gog);
+  std::vector<int> free{0, 0, 0};
+  while (!field.is_free(free)) ++free[0];
+  p.start = free;
+  p.goal = free;
+  for (const char* algo : {"astar", "bfs"}) {
+    GridSearchOptions o;
+    o.algorithm = parse_grid_algorithm(algo);
+    const GridReport r = dist::solve_grid_distributed(p, o, {}, *g_comm);
+    EXPECT_EQ(r.status, search::Status::solved);
+    EXPECT_EQ(r.cost, 0.0);
+    EXPECT_EQ(r.hops, 0u);
+  }
+}
+
+TEST(Ownership, SpreadsStatesEvenlyAndCoarseningKeepsCellsTogether) {
+  const KeyLayout layout(3, 64);
+  const dist::Ownership<1> fine(layout, 4, 0), coarse(layout, 4, 2);
+  std::map<int, int> counts;
+  int same_cell_same_owner = 0, cells_checked = 0;
+  for (int x = 0; x < 64; ++x)
+    for (int y = 0; y < 64; ++y)
+      for (int z = 0; z < 64; ++z) {
+        const int c[3] = {x, y, z};
+        const auto key = layout.pack<1>(c);
+        ++counts[fine(key)];
+        const int base[3] = {x & ~3, y & ~3, z & ~3};
+        ++cells_checked;
+        same_cell_same_owner += coarse(key) == coarse(layout.pack<1>(base));
+      }
+  ASSERT_EQ(counts.size(), 4u);
+  for (const auto& [owner, n] : counts) EXPECT_NEAR(n, 65536, 65536 * 0.02) << owner;
+  EXPECT_EQ(same_cell_same_owner, cells_checked);
+  const dist::Ownership<1> one(layout, 1, 0);
+  EXPECT_EQ(one(layout.pack<1>(std::vector<int>{5, 6, 7})), 0);
+}
+
+TEST(DistributedOptions, ImpossibleValuesAreInputErrors) {
+  dist::DistGridOptions d;
+  d.batch = 0;
+  EXPECT_THROW(dist::validate(d), InputError);
+  d = {};
+  d.coarsen_shift = 40;
+  EXPECT_THROW(dist::validate(d), InputError);
+  d = {};
+  d.sync_every = 0;
+  EXPECT_THROW(dist::validate(d), InputError);
+  EXPECT_THROW(dist::parse_scheme("sometimes"), InputError);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  hpcplan::mpi::Session session(argc, argv);
+  const hpcplan::mpi::Communicator comm;
+  g_comm = &comm;
+  ::testing::InitGoogleTest(&argc, argv);
+  // Only rank 0 prints test progress; every rank's failures still set its exit code.
+  if (comm.rank() != 0) {
+    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
+    delete listeners.Release(listeners.default_result_printer());
+  }
+  const int failed = RUN_ALL_TESTS();
+  return failed;
+}
