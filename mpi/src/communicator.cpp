@@ -1,6 +1,8 @@
 #include "hpcplan/mpi/communicator.hpp"
 
+#include <chrono>
 #include <cstdlib>
+#include <thread>
 
 #include "hpcplan/core/error.hpp"
 
@@ -36,6 +38,16 @@ Communicator::Communicator(MPI_Comm comm) : comm_(comm) {
 
 void Communicator::barrier() const {
   MPI_Barrier(comm_);
+}
+
+void Communicator::quiet_barrier() const {
+  MPI_Request request;
+  MPI_Ibarrier(comm_, &request);
+  for (int done = 0;;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
 }
 
 double Communicator::allreduce_min(double v) const {

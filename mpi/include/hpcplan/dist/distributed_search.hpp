@@ -103,9 +103,17 @@ class DistributedSearch {
   DistResult<State> run(const State& start, const State& goal) {
     goal_ = goal;
     checks_before_ = graph_.collision_checks();
-    comm_.barrier();  // all ranks start the clock together
+    // All ranks start the clock together; waiting ranks sleep, because rank 0 may be busy
+    // with a serial reference run (--compare-serial) that a spinning rank would slow down.
+    comm_.quiet_barrier();
     clock_ = Stopwatch();
     if (owner_(start) == rank_) accept(start, Cost{}, G::kNoMove);
+    if (comm_.size() == 1) {
+      // One rank owns everything: every schedule reduces to expanding until the open list is
+      // empty, with nothing to send, poll or agree on.
+      expand_slice(std::numeric_limits<std::uint64_t>::max(), [](int, const Record&) {});
+      return finish(start);
+    }
     switch (dist_.scheme) {
       case Scheme::async:
         run_async();
@@ -203,7 +211,9 @@ class DistributedSearch {
     State x;
     Cost g;
     double f;
-    while (done < limit && abort_ == none && store_.pop(x, g, f)) {
+    // BFS is done once the goal is stored: it was stored at its fewest-hops level.
+    const bool fifo = options_.frontier == search::Frontier::fifo;
+    while (done < limit && abort_ == none && !(fifo && incumbent_ < kInf) && store_.pop(x, g, f)) {
       if (x == goal_ || prunable(x, g, f)) {
         // With w = 1 the heap is ordered by the pruning key: everything left is prunable.
         if (options_.weight == 1.0 && !(x == goal_)) store_.clear_open();

@@ -36,6 +36,9 @@ class Communicator {
   int ranks_on_node() const { return ranks_on_node_; }
 
   void barrier() const;
+  // A barrier that sleeps between polls instead of spinning: for ranks waiting while another
+  // rank works alone (a spinning rank steals the core, or its SMT sibling, from the worker).
+  void quiet_barrier() const;
   double allreduce_min(double v) const;
   double allreduce_max(double v) const;
   std::uint64_t allreduce_sum(std::uint64_t v) const;
