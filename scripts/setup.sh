@@ -7,7 +7,7 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config python3
   libgtest-dev libgmock-dev libbenchmark-dev
   libabsl-dev nlohmann-json3-dev libcli11-dev robin-map-dev
-  libopenmpi-dev openmpi-bin
+  libopenmpi-dev openmpi-bin procps
 )
 
 missing=()
