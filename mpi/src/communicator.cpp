@@ -36,10 +36,6 @@ Communicator::Communicator(MPI_Comm comm) : comm_(comm) {
   MPI_Comm_free(&node);
 }
 
-void Communicator::barrier() const {
-  MPI_Barrier(comm_);
-}
-
 void Communicator::quiet_barrier() const {
   MPI_Request request;
   MPI_Ibarrier(comm_, &request);

@@ -5,6 +5,8 @@
 // into a hang; ctest's timeout guards the rest.
 #include <gtest/gtest.h>
 
+#include "support/walled_line.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -131,25 +133,7 @@ TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
   }
 }
 
-// Finds a 1D field with a blocked cell between two free ends: no path can cross it.
-GridProblem walled_line() {
-  for (std::uint64_t seed = 1;; ++seed) {
-    GridProblem p;
-    p.dims = 1;
-    p.extent = 64;
-    p.gog.seed = seed;
-    p.gog.shift_v = 2;
-    p.gog.threshold = 2;
-    const GogField f(1, 64, p.gog);
-    if (!f.is_free(std::vector<int>{0}) || !f.is_free(std::vector<int>{63})) continue;
-    for (int c = 1; c + 1 < 64; ++c)
-      if (!f.is_free(std::vector<int>{c})) {
-        p.start = std::vector<int>{0};
-        p.goal = std::vector<int>{63};
-        return p;
-      }
-  }
-}
+using hpcplan::test_support::walled_line;
 
 TEST(Distributed, NoPathIsAgreedByEveryRankForEveryScheme) {
   const GridProblem p = walled_line();

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "support/walled_line.hpp"
+
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/graph/lattice_distance.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
@@ -8,26 +10,7 @@ namespace {
 
 using namespace hpcplan;
 
-// Finds a 1D field with a blocked cell between two free ones: a wall no path can cross.
-GridProblem walled_line() {
-  for (std::uint64_t seed = 1;; ++seed) {
-    GridProblem p;
-    p.dims = 1;
-    p.extent = 64;
-    p.gog.seed = seed;
-    p.gog.shift_v = 2;
-    p.gog.threshold = 2;
-    const GogField f(1, 64, p.gog);
-    for (int c = 1; c + 1 < 64; ++c) {
-      if (!f.is_free(std::vector<int>{c}) && f.is_free(std::vector<int>{0}) &&
-          f.is_free(std::vector<int>{63})) {
-        p.start = std::vector<int>{0};
-        p.goal = std::vector<int>{63};
-        return p;
-      }
-    }
-  }
-}
+using hpcplan::test_support::walled_line;
 
 TEST(GridPlanner, WallGivesNoPathForEveryAlgorithm) {
   const GridProblem p = walled_line();

@@ -146,8 +146,6 @@ class SearchStore {
   std::size_t stored() const { return visited_.size(); }
   std::uint64_t reopened() const { return reopened_; }
   std::uint64_t peak_open() const { return peak_open_; }
-  const Heuristic& heuristic() const { return h_; }
-  double weight() const { return weight_; }
 
   static constexpr double kInfinity = std::numeric_limits<double>::infinity();
 

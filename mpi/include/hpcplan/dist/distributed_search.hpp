@@ -24,6 +24,7 @@
 // does not carry over) and the same argument with the pruning rule gives cost <= w * C*.
 // The path is rebuilt from the owners' parent moves, one owner's run of states at a time.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -61,7 +62,6 @@ template <class State>
 struct DistResult {
   search::Result<State> result;                // on every rank; counters summed (rank 0)
   std::vector<search::RankCounters> per_rank;  // rank 0 only
-  search::RankCounters mine;
 };
 
 template <class State, class Cost, class Move>
@@ -159,12 +159,31 @@ class DistributedSearch {
     return true;
   }
 
+  // Costs at or above this cannot beat the incumbent (a margin absorbs rounding; exact
+  // lattice costs that truly differ differ far more). +inf while there is no incumbent.
+  double prune_bound() const { return incumbent_ - 1e-9 * (1.0 + incumbent_); }
+
   // Whether an open state can no longer beat the incumbent by more than the weight allows.
   bool prunable(const State& x, const Cost& g, double f) const {
     if (incumbent_ == kInf) return false;
-    const double bound = incumbent_ - 1e-9 * (1.0 + incumbent_);
-    if (options_.weight == 1.0) return f >= bound;
-    return options_.weight * (cost_value(g) + cost_value(h_(x))) >= bound;
+    if (options_.weight == 1.0) return f >= prune_bound();
+    return options_.weight * (cost_value(g) + cost_value(h_(x))) >= prune_bound();
+  }
+
+  // Collective, for the synchronous schedules: sums `work` and `found` over all ranks and
+  // adopts the most severe stop any rank hit (budget over time limit). Time spent counts as
+  // waiting.
+  std::array<std::uint64_t, 2> agree(std::uint64_t work, std::uint64_t found) {
+    Stopwatch wait;
+    std::uint64_t sums[4] = {work, found, abort_ == timed_out ? 1u : 0u,
+                             abort_ == over_budget ? 1u : 0u};
+    comm_.allreduce_sum(sums);
+    wait_ms_ += wait.milliseconds();
+    if (sums[3] != 0)
+      abort_ = over_budget;
+    else if (sums[2] != 0)
+      abort_ = timed_out;
+    return {sums[0], sums[1]};
   }
 
   template <class Route>
@@ -317,24 +336,16 @@ class DistributedSearch {
       ++sync_rounds_;
       Stopwatch wait;
       incumbent_ = comm_.allreduce_min(incumbent_);
-      const bool has_work =
-          abort_ == none && !store_.open_empty() && !(options_.weight == 1.0 && prunable_front());
-      std::uint64_t agree[3] = {has_work ? 1u : 0u, abort_ == timed_out ? 1u : 0u,
-                                abort_ == over_budget ? 1u : 0u};
-      comm_.allreduce_sum(agree);
       wait_ms_ += wait.milliseconds();
-      if (agree[2] != 0)
-        abort_ = over_budget;
-      else if (agree[1] != 0)
-        abort_ = timed_out;
-      if (abort_ != none || agree[0] == 0) break;
+      // With w = 1 the heap front bounds every open state (a stale front only errs towards
+      // one more round).
+      const bool has_work = abort_ == none && !store_.open_empty() &&
+                            !(options_.weight == 1.0 && store_.best_priority() >= prune_bound());
+      const std::uint64_t work = agree(has_work ? 1 : 0, 0)[0];
+      if (abort_ != none || work == 0) break;
     }
     wait_ms_ += exchange.wait_ms();
     traffic_ = exchange.traffic();
-  }
-
-  bool prunable_front() const {
-    return incumbent_ != kInf && store_.best_priority() >= incumbent_ - 1e-9 * (1.0 + incumbent_);
   }
 
   // --- level-synchronous BFS ------------------------------------------------------------
@@ -343,16 +354,8 @@ class DistributedSearch {
     mpi::AllToAllExchange<Record> exchange(comm_);
     auto route = [&](int dest, const Record& r) { exchange.post(dest, r); };
     for (;;) {
-      Stopwatch wait;
-      std::uint64_t agree[4] = {store_.open_size(), incumbent_ < kInf ? 1u : 0u,
-                                abort_ == timed_out ? 1u : 0u, abort_ == over_budget ? 1u : 0u};
-      comm_.allreduce_sum(agree);
-      wait_ms_ += wait.milliseconds();
-      if (agree[3] != 0)
-        abort_ = over_budget;
-      else if (agree[2] != 0)
-        abort_ = timed_out;
-      if (abort_ != none || agree[1] != 0 || agree[0] == 0) break;
+      const auto [frontier, found] = agree(store_.open_size(), incumbent_ < kInf ? 1 : 0);
+      if (abort_ != none || found != 0 || frontier == 0) break;
       // Expand exactly this level: states opened meanwhile belong to the next one.
       expand_slice(store_.open_size(), route);
       check_time();
@@ -389,7 +392,7 @@ class DistributedSearch {
     }
     const double elapsed = clock_.milliseconds();
 
-    search::RankCounters& me = out.mine;
+    search::RankCounters me;
     me.expanded = expanded_;
     me.generated = generated_;
     me.collision_checks = graph_.collision_checks() - checks_before_;

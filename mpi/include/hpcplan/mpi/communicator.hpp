@@ -35,7 +35,6 @@ class Communicator {
   // Ranks of this job on this node (they share its memory).
   int ranks_on_node() const { return ranks_on_node_; }
 
-  void barrier() const;
   // A barrier that sleeps between polls instead of spinning: for ranks waiting while another
   // rank works alone (a spinning rank steals the core, or its SMT sibling, from the worker).
   void quiet_barrier() const;
