@@ -4,8 +4,8 @@ import csv
 import sys
 
 rows = list(csv.DictReader(open(sys.argv[1])))
-cols = ["label", "ranks", "dims", "extent", "scheme", "batch", "coarsen", "status", "expanded",
-        "serial_median_ms", "median_ms", "speedup_vs_serial", "efficiency",
+cols = ["label", "ranks", "dims", "extent", "scheme", "batch", "coarsen", "sent_filter", "status", "expanded",
+        "serial_median_ms", "median_ms", "ratio_of_medians", "speedup_vs_serial", "efficiency",
         "messages_per_expansion", "bytes_per_expansion", "workload_deviation_percent",
         "search_overhead"]
 print("| " + " | ".join(cols) + " |")

@@ -88,7 +88,8 @@ void run_distributed(const GogField& field, const GridProblem& problem, const Gr
   report.hops = r.result.hops;
   report.counters = r.result.counters;
   report.per_rank = std::move(r.per_rank);
-  report.scheme = std::string(to_string(d.scheme));
+  // One rank runs the serial engine (DistributedSearch::run), and says so.
+  report.scheme = p == 1 ? "serial" : std::string(to_string(d.scheme));
   if (o.keep_path)
     for (const auto& s : r.result.path) report.path.push_back(graph.unpack(s));
 }

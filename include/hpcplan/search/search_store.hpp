@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/core/huge_page_allocator.hpp"
 #include "hpcplan/graph/lattice_cost.hpp"
 #include "hpcplan/search/visited_map.hpp"
 
@@ -195,7 +196,7 @@ class SearchStore {
   double weight_;
   std::uint64_t max_states_;
   typename MapPolicy::template type<State, Node, typename G::Hash> visited_;
-  std::vector<Entry> heap_;
+  std::vector<Entry, HugePageAllocator<Entry>> heap_;
   std::deque<std::pair<State, Cost>> fifo_queue_;  // BFS: each state with its g
   std::uint64_t reopened_ = 0;
   std::uint64_t peak_open_ = 0;

@@ -23,6 +23,7 @@
 // states are reopened (expansion order differs from serial, so the serial no-reopen argument
 // does not carry over) and the same argument with the pruning rule gives cost <= w * C*.
 // The path is rebuilt from the owners' parent moves, one owner's run of states at a time.
+// A one-rank job runs the serial engine (best_first.hpp) on the same store: no schedule.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -41,6 +42,7 @@
 #include "hpcplan/mpi/batched_channel.hpp"
 #include "hpcplan/mpi/communicator.hpp"
 #include "hpcplan/mpi/termination.hpp"
+#include "hpcplan/search/best_first.hpp"
 #include "hpcplan/search/search_result.hpp"
 #include "hpcplan/search/search_store.hpp"
 
@@ -93,6 +95,7 @@ class DistributedSearch {
         h_(h),
         owner_(owner),
         comm_(comm),
+        serial_options_(options),
         options_(adjusted(options, dist)),
         dist_(dist),
         rank_(comm.rank()),
@@ -101,6 +104,10 @@ class DistributedSearch {
 
   // Collective: every rank calls it with the same arguments.
   DistResult<State> run(const State& start, const State& goal) {
+    // One rank owns everything, so there is nothing to route, send or agree on: the job is
+    // the serial search, and running the serial engine itself keeps P = 1 exactly as fast
+    // and gives the serial expansion order (weighted A* without reopening included).
+    if (comm_.size() == 1) return run_single(start, goal);
     goal_ = goal;
     checks_before_ = graph_.collision_checks();
     // All ranks start the clock together; waiting ranks sleep, because rank 0 may be busy
@@ -108,12 +115,6 @@ class DistributedSearch {
     comm_.quiet_barrier();
     clock_ = Stopwatch();
     if (owner_(start) == rank_) accept(start, Cost{}, G::kNoMove);
-    if (comm_.size() == 1) {
-      // One rank owns everything: every schedule reduces to expanding until the open list is
-      // empty, with nothing to send, poll or agree on.
-      expand_slice(std::numeric_limits<std::uint64_t>::max(), [](int, const Record&) {});
-      return finish(start);
-    }
     switch (dist_.scheme) {
       case Scheme::async:
         run_async();
@@ -140,6 +141,22 @@ class DistributedSearch {
       o.reopen_closed = true;
     }
     return o;
+  }
+
+  DistResult<State> run_single(const State& start, const State& goal) {
+    DistResult<State> out;
+    out.result = search::best_first_search<MapPolicy>(graph_, start, goal, h_, serial_options_);
+    const search::Counters& c = out.result.counters;
+    search::RankCounters me;
+    me.expanded = c.expanded;
+    me.generated = c.generated;
+    me.collision_checks = c.collision_checks;
+    me.states_stored = c.peak_states;
+    me.peak_open = c.peak_open;
+    me.reopened = c.reopened;
+    me.search_ms = c.time_ms;
+    out.per_rank.push_back(me);
+    return out;
   }
 
   // --- the part every schedule shares --------------------------------------------------
@@ -484,7 +501,8 @@ class DistributedSearch {
   const Heuristic& h_;
   const Owner& owner_;
   const mpi::Communicator& comm_;
-  search::Options options_;
+  search::Options serial_options_;  // as the caller gave them: what a one-rank run uses
+  search::Options options_;         // adjusted for the distributed schedules
   DistOptions dist_;
   int rank_;
   Store store_;
