@@ -17,5 +17,6 @@ struct Context {
 // action returns the process exit code and may throw InputError / RunError.
 using Action = std::function<int(const Context&)>;
 Action register_grid_command(CLI::App& app);
+Action register_ompl_command(CLI::App& app);
 
 }  // namespace hpcplan::cli

@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   CLI::App app{"hpcplan: HPC motion planning on implicit grids, sampling planners and fluids"};
   app.require_subcommand(1);
   hpcplan::cli::Action grid = hpcplan::cli::register_grid_command(app);
+  hpcplan::cli::Action ompl = hpcplan::cli::register_ompl_command(app);
   // Bad input is detected identically on every rank before any communication, so every rank
   // returns and only rank 0 speaks.
   try {
@@ -62,6 +63,7 @@ int main(int argc, char** argv) {
   };
   try {
     if (app.got_subcommand("grid")) return grid(context);
+    if (app.got_subcommand("ompl")) return ompl(context);
     return root ? report(hpcplan::kExitBadInput, "no subcommand given") : hpcplan::kExitBadInput;
   } catch (const hpcplan::InputError& e) {
     return root ? report(hpcplan::kExitBadInput, e.what()) : hpcplan::kExitBadInput;

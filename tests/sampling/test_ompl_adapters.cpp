@@ -1,0 +1,325 @@
+// The OMPL adapters against the native GOG checker, the grid planner inside OMPL, and the
+// benchmark harness's bookkeeping.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/SimpleSetup.h>
+#include <ompl/util/Console.h>
+
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/plan/grid_problem.hpp"
+#include "hpcplan/sampling/gog_motion_validator.hpp"
+#include "hpcplan/sampling/gog_world.hpp"
+#include "hpcplan/sampling/grid_astar_planner.hpp"
+#include "hpcplan/sampling/ompl_benchmark.hpp"
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace hpcplan::sampling {
+namespace {
+
+GogWorld world_for(int dims, int extent, double resolution = 0.1, std::uint64_t seed = 1) {
+  GogParams p;
+  p.seed = seed;
+  return make_gog_world(std::make_shared<const GogField>(dims, extent, p), resolution);
+}
+
+std::vector<double> coords(const ob::ScopedState<>& s, int d) {
+  std::vector<double> x(d);
+  for (int a = 0; a < d; ++a) x[a] = s[a];
+  return x;
+}
+
+class CheckerAgreement : public ::testing::TestWithParam<int> {};
+
+TEST_P(CheckerAgreement, RandomPointsMatchTheNativeChecker) {
+  const int d = GetParam();
+  const int extent = 40;
+  const GogWorld w = world_for(d, extent);
+  std::mt19937_64 rng(1234 + d);
+  std::uniform_real_distribution<double> u(0.0, extent);
+  ob::ScopedState<> s(w.space);
+  int free = 0;
+  for (int i = 0; i < 20000; ++i) {
+    std::vector<int> cell(d);
+    for (int a = 0; a < d; ++a) {
+      // Every fifth coordinate lands exactly on a cell boundary, including the upper bound.
+      double x = u(rng);
+      if (i % 5 == 0) x = std::floor(x + 0.5);
+      s[a] = x;
+      cell[a] = std::min(static_cast<int>(std::floor(x)), extent - 1);
+    }
+    const bool native = w.field->is_free(cell);
+    ASSERT_EQ(w.checker->isValid(s.get()), native) << "point " << i;
+    EXPECT_EQ(w.checker->cell_of(s.get()), cell);
+    free += native;
+  }
+  EXPECT_GT(free, 1000);  // both outcomes exercised
+  EXPECT_LT(free, 19000);
+}
+
+INSTANTIATE_TEST_SUITE_P(Dims, CheckerAgreement, ::testing::Values(2, 4, 7, 10));
+
+TEST(GogWorld, PointsOutsideTheBoxAreInvalidAndChecksAreCounted) {
+  const GogWorld w = world_for(2, 20);
+  ob::ScopedState<> s(w.space);
+  w.checker->reset_checks();
+  s[0] = -0.001;
+  s[1] = 1.0;
+  EXPECT_FALSE(w.checker->isValid(s.get()));
+  s[0] = 20.001;
+  EXPECT_FALSE(w.checker->isValid(s.get()));
+  s[0] = std::nan("");
+  EXPECT_FALSE(w.checker->isValid(s.get()));
+  EXPECT_EQ(w.checker->checks(), 3u);
+  const double x[2] = {1.0, 1.0};
+  (void)w.checker->point_is_free(x);  // the uncounted path
+  EXPECT_EQ(w.checker->checks(), 3u);
+}
+
+TEST(GogWorld, MotionValidatorRejectsASegmentThroughABlockedCell) {
+  const GogWorld w = world_for(2, 100);
+  // Find free - blocked - free along axis 0.
+  const GogField& f = *w.field;
+  for (int y = 0; y < 100; ++y)
+    for (int x = 1; x + 1 < 100; ++x) {
+      if (!f.is_free(std::vector<int>{x - 1, y}) || f.is_free(std::vector<int>{x, y}) ||
+          !f.is_free(std::vector<int>{x + 1, y}))
+        continue;
+      ob::ScopedState<> a(w.space), b(w.space);
+      cell_centre({x - 1, y}, a.get());
+      cell_centre({x + 1, y}, b.get());
+      EXPECT_FALSE(w.si->checkMotion(a.get(), b.get()));
+      EXPECT_EQ(first_invalid_step(w, {coords(a, 2), coords(b, 2)}), 1);
+      return;
+    }
+  FAIL() << "no free-blocked-free triple found";
+}
+
+// The exact validator against dense sampling: whatever it accepts has every sampled point
+// free, and whatever has a blocked sample it rejects.
+class ExactMotion : public ::testing::TestWithParam<int> {};
+
+TEST_P(ExactMotion, AgreesWithDenseSampling) {
+  const int d = GetParam();
+  const int extent = 24;
+  const GogWorld w = world_for(d, extent);
+  const GogMotionValidator exact(w.si, w.checker);
+  std::mt19937_64 rng(99 + d);
+  std::uniform_real_distribution<double> u(0.0, extent);
+  std::uniform_real_distribution<double> step(-3.0, 3.0);
+  int accepted = 0, rejected = 0;
+  for (int n = 0; n < 4000; ++n) {
+    std::vector<double> a(d), b(d);
+    for (int i = 0; i < d; ++i) {
+      a[i] = u(rng);
+      // Short and long segments, some starting on cell faces or along exact diagonals.
+      b[i] = std::clamp(a[i] + (n % 3 == 0 ? step(rng) * 4 : step(rng)), 0.0, double(extent));
+      if (n % 7 == 0) a[i] = std::floor(a[i]);
+      if (n % 11 == 0) b[i] = a[i] + (i < 2 ? 1.0 : 0.0);
+      b[i] = std::clamp(b[i], 0.0, double(extent));
+    }
+    if (!w.checker->point_is_free(a.data())) continue;
+    double at = 0;
+    const bool ok = exact.segment_free(a.data(), b.data(), &at);
+    bool sampled_ok = true;
+    std::vector<double> p(d);
+    for (int s = 0; s <= 2000 && sampled_ok; ++s) {
+      for (int i = 0; i < d; ++i) p[i] = s == 2000 ? b[i] : a[i] + (b[i] - a[i]) * s / 2000.0;
+      sampled_ok = w.checker->point_is_free(p.data());
+    }
+    if (ok) {
+      ++accepted;
+      ASSERT_TRUE(sampled_ok) << "exact validator accepted a segment with a blocked point: n=" << n
+                              << " a0=" << a[0] << " a1=" << a[1] << " b0=" << b[0]
+                              << " b1=" << b[1] << " p0=" << p[0] << " p1=" << p[1];
+    } else {
+      ++rejected;
+    }
+    if (!sampled_ok) {
+      ASSERT_FALSE(ok);
+    }
+  }
+  EXPECT_GT(accepted, 100);
+  EXPECT_GT(rejected, 100);
+}
+
+INSTANTIATE_TEST_SUITE_P(Dims, ExactMotion, ::testing::Values(2, 3, 5, 8));
+
+TEST(ExactMotion, ADiagonalThroughACornerOfABlockedCellIsRejected) {
+  // Free (x, y) and (x+1, y+1) with (x+1, y) blocked: the centre-to-centre diagonal only
+  // touches the blocked cell at one corner point. Point sampling accepts it (that point lies in
+  // the free cell by the floor rule); the exact validator, like the lattice, does not.
+  const GogWorld w = world_for(2, 100);
+  const GogField& f = *w.field;
+  const GogMotionValidator exact(w.si, w.checker);
+  for (int x = 0; x + 1 < 100; ++x)
+    for (int y = 0; y + 1 < 100; ++y) {
+      if (f.is_free(std::vector<int>{x, y}) && f.is_free(std::vector<int>{x + 1, y + 1}) &&
+          !f.is_free(std::vector<int>{x + 1, y})) {
+        const double p[2] = {x + 0.5, y + 0.5}, q[2] = {x + 1.5, y + 1.5};
+        double at = 0;
+        EXPECT_FALSE(exact.segment_free(p, q, &at));
+        EXPECT_NEAR(at, 0.5, 1e-9);
+        const double r[2] = {x + 0.5, y + 0.6}, s2[2] = {x + 1.4, y + 1.5};  // clear of it
+        EXPECT_TRUE(exact.segment_free(r, s2, &at));
+        return;
+      }
+    }
+  FAIL() << "no such corner in this field";
+}
+
+TEST(GogWorld, BadResolutionIsAnInputError) {
+  auto f = std::make_shared<const GogField>(2, 10, GogParams{});
+  EXPECT_THROW(make_gog_world(f, 0.0), InputError);
+  EXPECT_THROW(make_gog_world(f, 1.5), InputError);
+}
+
+// Solves the seed problem with the grid planner through OMPL and returns the path.
+og::PathGeometric solve_with_grid(const GogWorld& w, bool shortcut, GridReport* report) {
+  const int d = w.field->dims();
+  const auto s = adjust_to_free(*w.field, std::vector<int>(d, 0), +1, "start");
+  const auto g = adjust_to_free(*w.field, std::vector<int>(d, w.field->extent() - 1), -1, "goal");
+  og::SimpleSetup ss(w.si);
+  ob::ScopedState<> start(w.space), goal(w.space);
+  cell_centre(s, start.get());
+  cell_centre(g, goal.get());
+  ss.setStartAndGoalStates(start, goal, 1e-6);
+  ss.setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(w.si));
+  auto planner = std::make_shared<GridAStarPlanner>(w);
+  planner->setShortcut(shortcut);
+  ss.setPlanner(planner);
+  const auto status = ss.solve(10.0);
+  EXPECT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION);
+  if (report) *report = planner->lastReport();
+  return ss.getSolutionPath();
+}
+
+class GridPlannerInOmpl : public ::testing::TestWithParam<int> {};
+
+TEST_P(GridPlannerInOmpl, LatticePathIsTheSearchCostAndShortcutsOnlyShorten) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  const int d = GetParam();
+  const GogWorld w = world_for(d, d <= 4 ? 60 : 12);
+  GridReport report;
+  og::PathGeometric lattice = solve_with_grid(w, false, &report);
+  ASSERT_EQ(report.status, search::Status::solved);
+  // Cell centres to cell centres: the continuous length is the lattice cost exactly.
+  EXPECT_NEAR(lattice.length(), report.cost, 1e-9 * report.cost);
+  EXPECT_TRUE(lattice.check());
+  std::vector<std::vector<double>> pts;
+  for (std::size_t i = 0; i < lattice.getStateCount(); ++i) {
+    const double* x = lattice.getState(i)->as<ob::RealVectorStateSpace::StateType>()->values;
+    pts.emplace_back(x, x + d);
+  }
+  EXPECT_EQ(first_invalid_step(w, pts), -1);
+
+  og::PathGeometric shortened = solve_with_grid(w, true, nullptr);
+  EXPECT_TRUE(shortened.check());
+  EXPECT_LE(shortened.length(), lattice.length() + 1e-9);
+  // Same ends, exactly.
+  EXPECT_EQ(w.si->distance(shortened.getState(0), lattice.getState(0)), 0.0);
+  EXPECT_EQ(w.si->distance(shortened.getState(shortened.getStateCount() - 1),
+                           lattice.getState(lattice.getStateCount() - 1)),
+            0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Dims, GridPlannerInOmpl, ::testing::Values(2, 3, 4, 6));
+
+TEST(GridPlannerInOmpl, StartInsideAnObstacleIsReportedAsInvalidStart) {
+  const GogWorld w = world_for(2, 100);
+  std::vector<int> blocked;
+  for (int x = 0; x < 100 && blocked.empty(); ++x)
+    for (int y = 0; y < 100 && blocked.empty(); ++y)
+      if (!w.field->is_free(std::vector<int>{x, y})) blocked = {x, y};
+  ASSERT_FALSE(blocked.empty());
+  og::SimpleSetup ss(w.si);
+  ob::ScopedState<> start(w.space), goal(w.space);
+  cell_centre(blocked, start.get());
+  cell_centre(adjust_to_free(*w.field, {99, 99}, -1, "goal"), goal.get());
+  ss.setStartAndGoalStates(start, goal, 1e-6);
+  auto planner = std::make_shared<GridAStarPlanner>(w);
+  ss.setPlanner(planner);
+  ss.setup();
+  // SimpleSetup drops invalid starts before the planner sees them; ask the planner directly.
+  planner->getProblemDefinition()->clearStartStates();
+  planner->getProblemDefinition()->addStartState(start);
+  planner->clear();
+  EXPECT_NE(ss.getPlanner()->solve(1.0), ob::PlannerStatus::EXACT_SOLUTION);
+}
+
+TEST(OmplBenchmark, FmtSamplesFollowSeedEquationOne) {
+  EXPECT_EQ(fmt_samples(2), 2000u);
+  EXPECT_EQ(fmt_samples(4), 8000u);
+  EXPECT_EQ(fmt_samples(10), 98000u);
+}
+
+TEST(OmplBenchmark, BadOptionsAreInputErrors) {
+  OmplBenchOptions o;
+  o.planners = {"gridastar", "nosuchplanner"};
+  EXPECT_THROW(validate(o), InputError);
+  o = OmplBenchOptions{};
+  o.planners = {"fmt", "fmt"};
+  EXPECT_THROW(validate(o), InputError);
+  o = OmplBenchOptions{};
+  o.dims = 1;
+  EXPECT_THROW(validate(o), InputError);
+  o = OmplBenchOptions{};
+  o.time_s = 0;
+  EXPECT_THROW(validate(o), InputError);
+  o = OmplBenchOptions{};
+  o.runs = 0;
+  EXPECT_THROW(validate(o), InputError);
+  o = OmplBenchOptions{};
+  o.planners.clear();
+  EXPECT_THROW(validate(o), InputError);
+}
+
+TEST(OmplBenchmark, EveryRunIsRecordedValidatedAndScored) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  OmplBenchOptions o;
+  o.dims = 3;
+  o.extent = 30;
+  o.planners = {"gridastar", "gridastar_lattice", "rrtconnect", "bitstar"};
+  o.time_s = 0.3;
+  o.runs = 2;
+  const auto r = run_ompl_benchmark(o, "", "");
+  ASSERT_EQ(r.rows.size(), 8u);
+  ASSERT_GT(r.reference_quality, 0.0);
+  for (const auto& row : r.rows) {
+    SCOPED_TRACE(row.planner + " run " + std::to_string(row.run));
+    EXPECT_EQ(row.dims, 3);
+    EXPECT_TRUE(row.path_valid);
+    EXPECT_GT(row.collision_checks, 0u);
+    if (!row.solved) continue;
+    EXPECT_GE(row.quality_first, 1.0 - 1e-12);
+    EXPECT_LE(row.quality_final, row.quality_first + 1e-12);
+    EXPECT_GE(row.quality_final, r.reference_quality - 1e-12);
+    EXPECT_LE(row.time_first_s, row.time_s + 1e-3);
+    if (row.time_best_s >= 0) {
+      EXPECT_TRUE(row.anytime);
+      EXPECT_LE(row.quality_best, 0.5 * (row.quality_first + r.reference_quality) + 1e-12);
+    }
+  }
+  // The lattice path is the lattice optimum; the shortcut one is never longer.
+  EXPECT_LE(r.rows[0].quality_final, r.rows[2].quality_final + 1e-12);
+  const std::string csv = to_csv(r);
+  EXPECT_EQ(csv.rfind("planner,dims,run,seed,solved,time_first_s,length_first,quality_first,"
+                      "time_best_s,quality_best,quality_final,",
+                      0),
+            0u);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 9);
+}
+
+}  // namespace
+}  // namespace hpcplan::sampling

@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# hpcplan ompl end to end: the OMPL log must load in the real ompl_benchmark_statistics and its
+# SQLite database must hold every requested planner and run; the CSV must hold one valid row per
+# run; bad options must give one line on stderr, exit 2 and write nothing.
+set -uo pipefail
+bin=${1:?usage: test_ompl_cli.sh path/to/hpcplan}
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+"$bin" ompl --dims 2 --planners gridastar,bitstar,fmt,rrtconnect --time 0.3 --runs 2 --seed 1 \
+  --log "$dir/run.log" --csv "$dir/run.csv" > "$dir/out.txt" || fail "ompl run failed"
+grep -q "gridastar" "$dir/out.txt" || fail "no summary table"
+command -v ompl_benchmark_statistics >/dev/null || fail "ompl_benchmark_statistics missing (ompl-demos)"
+ompl_benchmark_statistics "$dir/run.log" -d "$dir/run.db" > "$dir/stats.txt" 2>&1 ||
+  { cat "$dir/stats.txt"; fail "ompl_benchmark_statistics rejected the log"; }
+python3 - "$dir/run.db" "$dir/run.csv" <<'PY' || exit 1
+import csv, sqlite3, sys
+db = sqlite3.connect(sys.argv[1])
+planners = {name for (name,) in db.execute("SELECT name FROM plannerConfigs")}
+want = {"geometric_GridAStar", "geometric_kBITstar", "geometric_FMT", "geometric_RRTConnect"}
+missing = want - planners
+if missing:
+    sys.exit(f"FAIL: planners missing from the database: {missing} (have {planners})")
+runs = db.execute("SELECT COUNT(*) FROM runs").fetchone()[0]
+if runs != 8:
+    sys.exit(f"FAIL: {runs} runs in the database, expected 8")
+cols = [r[1] for r in db.execute("PRAGMA table_info(runs)")]
+for c in ("collision_checks", "path_valid", "time_first"):
+    if c not in cols:
+        sys.exit(f"FAIL: column {c} missing from the runs table: {cols}")
+rows = list(csv.DictReader(open(sys.argv[2])))
+need = ["planner", "dims", "run", "seed", "solved", "time_first_s", "length_first",
+        "quality_first", "time_best_s", "quality_best", "quality_final", "collision_checks"]
+for c in need:
+    if c not in rows[0]:
+        sys.exit(f"FAIL: CSV column {c} missing")
+if len(rows) != 8:
+    sys.exit(f"FAIL: {len(rows)} CSV rows, expected 8")
+for r in rows:
+    if r["path_valid"] != "1":
+        sys.exit(f"FAIL: invalid path in {r['planner']} run {r['run']}")
+    if r["planner"] == "gridastar" and r["solved"] != "1":
+        sys.exit("FAIL: the grid planner must solve the default 2D problem")
+print("ompl_cli: database and CSV ok")
+PY
+
+# Bad input: exit 2, one line on stderr, no output files.
+bad() {
+  local what=$1; shift
+  rm -f "$dir/bad.csv" "$dir/bad.log"
+  "$bin" ompl "$@" --log "$dir/bad.log" --csv "$dir/bad.csv" > /dev/null 2> "$dir/err.txt"
+  local rc=$?
+  [[ $rc -eq 2 ]] || fail "$what: exit $rc, expected 2"
+  [[ $(wc -l < "$dir/err.txt") -eq 1 ]] || fail "$what: stderr is not one line: $(cat "$dir/err.txt")"
+  [[ ! -e $dir/bad.csv && ! -e $dir/bad.log ]] || fail "$what: wrote output on bad input"
+}
+bad "unknown planner" --dims 2 --planners gridastar,warpdrive
+bad "zero time" --dims 2 --time 0
+bad "zero runs" --dims 2 --runs 0
+bad "one dimension" --dims 1
+bad "eleven dimensions" --dims 11
+bad "bad resolution" --dims 2 --resolution 2
+bad "duplicate planner" --dims 2 --planners fmt,fmt
+bad "missing dims" --planners fmt
+echo "ompl_cli: ok"
