@@ -26,7 +26,7 @@ GridAStarPlanner::GridAStarPlanner(const GogWorld& world, Connectivity connectiv
                        "1.:0.1:10.");
   declareParam<std::string>("heuristic", this, &GridAStarPlanner::setHeuristic,
                             &GridAStarPlanner::getHeuristic);
-  declareParam<bool>("shortcut", this, &GridAStarPlanner::setShortcut,
+  declareParam<bool>("smoothing", this, &GridAStarPlanner::setShortcut,
                      &GridAStarPlanner::getShortcut, "0,1");
   declareParam<double>("time_limit", this, &GridAStarPlanner::setTimeLimit,
                        &GridAStarPlanner::getTimeLimit, "0.:1.:3600.");

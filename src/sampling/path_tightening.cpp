@@ -97,8 +97,8 @@ TighteningStats tighten_path(const ob::SpaceInformationPtr& si, og::PathGeometri
     }
     drop_redundant(si, states);
     const double now = length_of(si, states);
-    // Converged when a round gains less than a ten-thousandth.
-    const bool done = length - now <= 1e-4 * length;
+    // Converged when a round gains less than a hundred-thousandth.
+    const bool done = length - now <= 1e-5 * length;
     length = now;
     if (done) break;
   }

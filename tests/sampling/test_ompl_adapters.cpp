@@ -236,6 +236,20 @@ TEST_P(GridPlannerInOmpl, LatticePathIsTheSearchCostAndShortcutsOnlyShorten) {
 
 INSTANTIATE_TEST_SUITE_P(Dims, GridPlannerInOmpl, ::testing::Values(2, 3, 4, 6));
 
+TEST(GridPlannerInOmpl, DeclaresItsParametersToOmpl) {
+  const GogWorld w = world_for(2, 20);
+  GridAStarPlanner planner(w);
+  auto& params = planner.params();
+  for (const char* name : {"weight", "heuristic", "smoothing", "time_limit"})
+    EXPECT_TRUE(params.hasParam(name)) << name;
+  EXPECT_TRUE(params.setParam("weight", "1.5"));
+  EXPECT_DOUBLE_EQ(planner.getWeight(), 1.5);
+  EXPECT_TRUE(params.setParam("heuristic", "euclidean"));
+  EXPECT_EQ(planner.getHeuristic(), "euclidean");
+  EXPECT_TRUE(params.setParam("smoothing", "0"));
+  EXPECT_FALSE(planner.getShortcut());
+}
+
 TEST(GridPlannerInOmpl, StartInsideAnObstacleIsReportedAsInvalidStart) {
   const GogWorld w = world_for(2, 100);
   std::vector<int> blocked;

@@ -10,8 +10,8 @@
 //  - the lattice's collision checks are added to the world's checker, so checks are counted
 //    by one object for every planner.
 // Parameters (declared, so Benchmark logs them): weight (1 = A*), heuristic (lattice |
-// euclidean), shortcut (0/1), time_limit (s, 0 = none; the search also stops when OMPL's
-// termination condition fires during shortcutting).
+// euclidean), smoothing (0/1: simplify + tighten), time_limit (s, 0 = none; the search also stops
+// when OMPL's termination condition fires during shortcutting).
 #include <string>
 
 #include <ompl/base/Planner.h>
