@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Against a real single-node SLURM (slurm/local_cluster.sh): submit the smoke job and a
+# two-point strong-scaling job with sbatch, wait for them, check their outputs, check that an
+# impossible rank count fails with a clear message, then stop the cluster.
+# Usage: test_slurm.sh REPO_ROOT BIN_DIR
+set -uo pipefail
+root=${1:?usage: test_slurm.sh REPO_ROOT BIN_DIR}
+bins=${2:?usage: test_slurm.sh REPO_ROOT BIN_DIR}
+work=$(mktemp -d /tmp/hpcplan-slurm-test.XXXXXX)
+cluster=$work/cluster
+fail() { echo "FAIL: $*" >&2; for f in "$cluster"/*.log "$work"/*.out; do [[ -f $f ]] && { echo "--- $f" >&2; tail -20 "$f" >&2; }; done; exit 1; }
+cleanup() { bash "$root/slurm/local_cluster.sh" stop "$cluster" >/dev/null 2>&1; rm -rf "$work"; }
+trap cleanup EXIT
+
+line=$(bash "$root/slurm/local_cluster.sh" start "$cluster") || fail "the local cluster did not start"
+eval "$line"
+export HPCPLAN_ROOT=$root HPCPLAN_BIN_DIR=$bins HPCPLAN_RESULTS=$work/results
+
+submit() {  # submit NAME SCRIPT [sbatch args]: waits; prints the job id
+  local name=$1 script=$2
+  shift 2
+  timeout 300 sbatch --parsable --wait --chdir "$work" --output "$work/$name-%j.out" "$@" \
+    "$root/slurm/$script"
+}
+
+# 1. Smoke: 2 ranks, cost equal to the serial engine's.
+jid=$(submit smoke smoke.sbatch --ntasks 2) || fail "smoke job failed"
+grep -q "smoke: ok" "$work"/smoke-"$jid".out || fail "smoke job did not report ok"
+res=$work/results/smoke/$jid
+[[ -f $res/result.json && -f $res/meta.json ]] || fail "smoke results missing in $res"
+python3 - "$res" <<'PY' || exit 1
+import json, sys
+r = json.load(open(sys.argv[1] + "/result.json")); m = json.load(open(sys.argv[1] + "/meta.json"))
+assert r["ranks"] == 2, r["ranks"]
+assert abs(r["cost"] - r["serial_reference"]["cost"]) < 1e-9 * (1 + r["cost"]), "cost differs"
+assert m["nodelist"] and m["git_revision"] and m["job_id"], m
+print("smoke results ok:", r["cost"], m["nodelist"])
+PY
+
+# 2. Strong scaling at P = 1, 2 on a small problem.
+jid=$(P_LIST="1 2" DIMS=3 EXTENT=40 REPEATS=1 MODES=bulk COARSEN=0 \
+  submit strong strong_scaling.sbatch --ntasks 2) || fail "strong-scaling job failed"
+csv=$work/results/strong/$jid/strong.csv
+[[ -f $csv ]] || fail "no $csv"
+python3 - "$csv" <<'PY' || exit 1
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+ranks = sorted(int(r["ranks"]) for r in rows)
+assert ranks == [1, 2], ranks
+for r in rows:
+    assert r["status"] == "solved", r
+    assert float(r["speedup_vs_serial"]) > 0, r
+print("strong results ok:", [(r["ranks"], r["speedup_vs_serial"]) for r in rows])
+PY
+
+# 3. An impossible rank count fails with a message naming it, and writes no results.
+if submit bad strong_scaling.sbatch --ntasks 1 --export=ALL,P_LIST=4 >/dev/null; then
+  fail "P = 4 on a 1-task job was accepted"
+fi
+grep -q "P = 4 exceeds the job's 1 tasks" "$work"/bad-*.out || fail "no clear message for an impossible P"
+
+# 4. Reruns never overwrite: a second smoke run gets its own folder.
+submit smoke smoke.sbatch --ntasks 2 >/dev/null || fail "second smoke job failed"
+[[ $(ls "$work/results/smoke" | wc -l) -eq 2 ]] || fail "smoke results were overwritten"
+echo "slurm: ok"
