@@ -16,9 +16,11 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/core/progress.hpp"
 #include "hpcplan/dist/grid_planner_mpi.hpp"
 #include "hpcplan/mpi/communicator.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
@@ -114,6 +116,8 @@ int main(int argc, char** argv) {
       const double slowest = comm.allreduce_max(t);
       if (root) crowd_ratio.push_back(comm.size() * serial_t.back() / slowest);
     };
+    std::optional<Progress> progress;
+    if (root) progress.emplace("hpcplan_mpi_scaling", static_cast<std::size_t>(repeats));
     for (int r = 0; r < repeats; ++r) {
       // Alternate the order: whichever runs second finds the allocator and caches warmed.
       const bool serial_first = r % 2 == 0;
@@ -127,6 +131,7 @@ int main(int argc, char** argv) {
       if (!no_serial && root)
         for (std::size_t c = 0; c < configs.size(); ++c)
           ratio[c].push_back(serial_t.back() / dist_t[c].back());
+      if (progress) progress->step("round " + std::to_string(r + 1));
     }
     const double serial_ms = no_serial || !root ? 0.0 : median(serial_t);
     std::ostringstream rows;

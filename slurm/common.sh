@@ -53,3 +53,45 @@ os.replace(tmp, path)
 PY
   echo "$dir"
 }
+
+# hpcplan_powers_of_two N: "1 2 4 ... <= N".
+hpcplan_powers_of_two() {
+  local n=$1 p list=""
+  for ((p = 1; p <= n; p *= 2)); do list+="$p "; done
+  echo "$list"
+}
+
+# hpcplan_check_p_list "P ..." NTASKS: every P a positive integer no larger than the job.
+hpcplan_check_p_list() {
+  local p
+  for p in $1; do
+    [[ $p =~ ^[1-9][0-9]*$ ]] || hpcplan_die "P_LIST entry '$p' is not a positive integer"
+    ((p <= $2)) || hpcplan_die "P = $p exceeds the job's $2 tasks (raise --ntasks or trim P_LIST)"
+  done
+}
+
+# hpcplan_already_done STUDY CSV LABEL KEY=VALUE...: true when an earlier job of STUDY with
+# these options wrote a row labelled LABEL (so a rerun study skips the points it has), unless
+# SKIP_DONE=0.
+hpcplan_already_done() {
+  [[ ${SKIP_DONE:-1} == 1 ]] || return 1
+  local study=$1 csv=$2 label=$3
+  shift 3
+  python3 - "$HPCPLAN_RESULTS/$study" "$csv" "$label" "$@" <<'PY'
+import csv, glob, json, os, sys
+root, name, label, *opts = sys.argv[1:]
+want = dict(o.split("=", 1) for o in opts)
+for meta_path in glob.glob(os.path.join(root, "*", "meta.json")):
+    folder = os.path.dirname(meta_path)
+    try:
+        meta = json.load(open(meta_path))
+    except (OSError, ValueError):
+        continue
+    if any(meta.get("options", {}).get(k) != v for k, v in want.items()):
+        continue
+    path = os.path.join(folder, name)
+    if os.path.exists(path) and any(r.get("label") == label for r in csv.DictReader(open(path))):
+        sys.exit(0)
+sys.exit(1)
+PY
+}

@@ -1,11 +1,14 @@
 // `hpcplan grid`: seed-002 grid search on the GOG field.
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/dist/grid_planner_mpi.hpp"
+#include "hpcplan/dist/rank_simulation.hpp"
 #include "hpcplan/io/atomic_file.hpp"
 #include "hpcplan/io/grid_report_json.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
@@ -24,7 +27,50 @@ struct GridArgs {
   bool json = false;
   dist::DistGridOptions dist;
   std::string mode = "async";
+  std::vector<int> simulate_ranks;
+  std::vector<int> simulate_shifts{0, 1};
 };
+
+nlohmann::json simulation_json(const dist::RankSimulation& sim) {
+  nlohmann::json splits = nlohmann::json::array();
+  for (const auto& s : sim.splits) {
+    std::uint64_t max_ex = 0, min_ex = ~0ULL;
+    for (auto e : s.expanded) {
+      max_ex = std::max(max_ex, e);
+      min_ex = std::min(min_ex, e);
+    }
+    splits.push_back({{"ranks", s.ranks},
+                      {"coarsen_shift", s.coarsen_shift},
+                      {"expansion_deviation_percent", s.expansion_deviation_percent},
+                      {"stored_deviation_percent", s.stored_deviation_percent},
+                      {"imbalance", s.imbalance},
+                      {"max_expanded_per_rank", max_ex},
+                      {"min_expanded_per_rank", min_ex},
+                      {"remote_successors", s.remote_successors},
+                      {"remote_fraction", s.remote_fraction},
+                      {"remote_per_expansion", s.remote_per_expansion}});
+  }
+  return splits;
+}
+
+std::string simulation_table(const dist::RankSimulation& sim) {
+  std::string out =
+      "  predicted split (serial search observed; ownership hash of the state, or of its cell "
+      "for k > 0)\n"
+      "     ranks   k  expand dev %  stored dev %  max/mean  max expanded/rank  remote succ. %  "
+      "remote/expansion\n";
+  char line[200];
+  for (const auto& s : sim.splits) {
+    std::uint64_t max_ex = 0;
+    for (auto e : s.expanded) max_ex = std::max(max_ex, e);
+    std::snprintf(line, sizeof line, "  %8d %3d %13.3f %13.3f %9.3f %18llu %15.2f %17.3f\n",
+                  s.ranks, s.coarsen_shift, s.expansion_deviation_percent,
+                  s.stored_deviation_percent, s.imbalance, static_cast<unsigned long long>(max_ex),
+                  100.0 * s.remote_fraction, s.remote_per_expansion);
+    out += line;
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -84,6 +130,16 @@ Action register_grid_command(CLI::App& app) {
   cmd->add_flag("--compare-serial", d.compare_serial,
                 "Rank 0 also solves serially first and reports search overhead and speedup")
       ->group(mpi);
+  cmd->add_option("--simulate-ranks", args->simulate_ranks,
+                  "Predict the split over these rank counts (e.g. 2,4,...,4096) from one serial "
+                  "search, instead of running distributed")
+      ->delimiter(',')
+      ->group(mpi);
+  cmd->add_option("--simulate-coarsen", args->simulate_shifts,
+                  "Ownership shifts k to predict for (0 = state hash)")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->group(mpi);
   cmd->add_flag("--path", args->options.keep_path, "Include the path");
   cmd->add_flag("--json", args->json, "Print one JSON object instead of a summary");
   cmd->add_option("--output", args->output, "Also write the JSON result to this file (atomically)");
@@ -100,6 +156,23 @@ Action register_grid_command(CLI::App& app) {
     a.dist.scheme = dist::parse_scheme(a.mode);
     dist::validate(a.dist);
 
+    if (!a.simulate_ranks.empty()) {
+      if (context.comm && context.comm->size() > 1)
+        throw InputError(
+            "--simulate-ranks predicts P ranks from one process; run it without "
+            "mpirun (or with -np 1)");
+      const dist::RankSimulation sim =
+          dist::simulate_ranks(a.problem, a.options, a.simulate_ranks, a.simulate_shifts);
+      nlohmann::json j = to_json(sim.serial, a.options.keep_path);
+      j["rank_simulation"] = simulation_json(sim);
+      const std::string json = j.dump() + "\n";
+      if (!a.output.empty()) write_file_atomically(a.output, json);
+      if (a.json)
+        std::fputs(json.c_str(), stdout);
+      else
+        std::fputs((to_summary(sim.serial) + simulation_table(sim)).c_str(), stdout);
+      return kExitOk;
+    }
     const GridReport report =
         context.comm ? dist::solve_grid_distributed(a.problem, a.options, a.dist, *context.comm)
                      : solve_grid(a.problem, a.options);

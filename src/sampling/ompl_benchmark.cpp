@@ -25,6 +25,7 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/core/progress.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/io/atomic_file.hpp"
 #include "hpcplan/plan/grid_problem.hpp"
@@ -229,6 +230,7 @@ OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o, const std::string&
   Stopwatch clock;
   std::vector<std::pair<double, double>> improvements;
   std::map<std::string, int> run_index;
+  Progress progress("hpcplan ompl", o.planners.size() * static_cast<std::size_t>(o.runs));
   bench.setPreRunEvent([&](const ob::PlannerPtr& planner) {
     world.checker->reset_checks();
     improvements.clear();
@@ -277,6 +279,7 @@ OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o, const std::string&
           run["quality first REAL"] = std::to_string(row.quality_first);
           run["quality final REAL"] = std::to_string(row.quality_final);
         }
+        progress.step(row.planner + " run " + std::to_string(row.run));
         result.rows.push_back(std::move(row));
         planner->getProblemDefinition()->setIntermediateSolutionCallback(nullptr);
       });

@@ -131,6 +131,34 @@ TEST(Cli, BadInputExitsTwoWithOneLine) {
   expect_bad_input("grid --dims 2 --threshold 99", "--threshold");
   expect_bad_input("grid", "dims");
   expect_bad_input("", "subcommand");
+  expect_bad_input("grid --dims 2 --simulate-ranks 0", "--simulate-ranks");
+  expect_bad_input("grid --dims 2 --simulate-ranks 2 --simulate-coarsen 17", "--simulate-coarsen");
+}
+
+// The rank simulator's report: shares per split are consistent with the observed search.
+TEST(Cli, SimulateRanksReportsEverySplit) {
+  const CliRun r =
+      run("grid --dims 3 --extent 30 --algo dijkstra --simulate-ranks 1,2,64 "
+          "--simulate-coarsen 0,2 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["rank_simulation"].size(), 6u);
+  const double expanded = j["expanded"].get<double>();
+  for (const auto& s : j["rank_simulation"]) {
+    const int p = s["ranks"];
+    EXPECT_GE(s["max_expanded_per_rank"].get<double>() * p, expanded - 1e-9);
+    EXPECT_LE(s["min_expanded_per_rank"].get<double>() * p, expanded + 1e-9);
+    EXPECT_GE(s["imbalance"].get<double>(), 1.0 - 1e-12);
+    if (p == 1) {
+      EXPECT_EQ(s["remote_successors"], 0);
+      EXPECT_EQ(s["expansion_deviation_percent"], 0.0);
+    } else {
+      EXPECT_GT(s["remote_successors"].get<double>(), 0.0);
+    }
+  }
+  // Cells of 4^3 states keep more successors local than the state hash.
+  EXPECT_LT(j["rank_simulation"][4]["remote_fraction"].get<double>(),
+            j["rank_simulation"][1]["remote_fraction"].get<double>());
 }
 
 TEST(Cli, OutputFileIsWrittenWholeOrNotAtAll) {

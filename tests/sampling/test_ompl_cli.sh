@@ -64,3 +64,13 @@ bad "bad resolution" --dims 2 --resolution 2
 bad "duplicate planner" --dims 2 --planners fmt,fmt
 bad "missing dims" --planners fmt
 echo "ompl_cli: ok"
+
+# Progress: silent when stderr is not a terminal, one line per run when asked.
+"$bin" ompl --dims 2 --planners gridastar --time 0.2 --runs 2 > /dev/null 2> "$dir/quiet.txt" ||
+  fail "quiet run failed"
+[[ ! -s $dir/quiet.txt ]] || fail "progress printed to a non-terminal: $(cat "$dir/quiet.txt")"
+HPCPLAN_PROGRESS=1 "$bin" ompl --dims 2 --planners gridastar --time 0.2 --runs 2 > /dev/null \
+  2> "$dir/progress.txt" || fail "progress run failed"
+grep -q "2/2 gridastar run 1" "$dir/progress.txt" && grep -q "s left" "$dir/progress.txt" ||
+  fail "no progress with HPCPLAN_PROGRESS=1: $(cat "$dir/progress.txt")"
+echo "ompl_cli: progress ok"

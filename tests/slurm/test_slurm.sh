@@ -62,4 +62,33 @@ grep -q "P = 4 exceeds the job's 1 tasks" "$work"/bad-*.out || fail "no clear me
 # 4. Reruns never overwrite: a second smoke run gets its own folder.
 submit smoke smoke.sbatch --ntasks 2 >/dev/null || fail "second smoke job failed"
 [[ $(ls "$work/results/smoke" | wc -l) -eq 2 ]] || fail "smoke results were overwritten"
+# 5. A rerun study skips the points it already has.
+jid=$(P_LIST="1 2" DIMS=3 EXTENT=40 REPEATS=1 MODES=bulk COARSEN=0 \
+  submit strong strong_scaling.sbatch --ntasks 2) || fail "strong rerun failed"
+grep -q "P = 2 already measured, skipped" "$work"/strong-"$jid".out || fail "rerun did not skip"
+
+# 6. Weak scaling (2 points) and the dimension sweep as a 2-task array.
+jid=$(P_LIST="1 2" DIMS=3 EXTENT1=30 REPEATS=1 submit weak weak_scaling.sbatch --ntasks 2) ||
+  fail "weak-scaling job failed"
+[[ $(tail -n +2 "$work/results/weak/$jid/weak.csv" | wc -l) -eq 2 ]] || fail "weak CSV incomplete"
+jid=$(DIMS_LIST="2 3" submit dims dimension_sweep.sbatch --ntasks 2 --array 0-1) ||
+  fail "dimension-sweep array failed"
+[[ -f $work/results/dims/${jid}_0/result.json && -f $work/results/dims/${jid}_1/result.json ]] ||
+  fail "dimension-sweep results missing"
+
+# 7. Aggregation over all of it: strong speedup rows for P = 1, 2, weak, Table IV.
+python3 "$root/scripts/scaling_report.py" "$work/results" > "$work/report.md" ||
+  fail "scaling_report failed"
+grep -q "strong scaling — 3D extent 40" "$work/report.md" && grep -q "weak scaling — 3D" \
+  "$work/report.md" && grep -q "Table IV" "$work/report.md" || fail "report incomplete: $(cat "$work/report.md")"
+
+# 8. submit.sh: clear errors for a missing binary and when no controller answers.
+if HPCPLAN_BIN_DIR=$work/nowhere bash "$root/slurm/submit.sh" smoke > /dev/null 2> "$work/err.txt"; then
+  fail "submit.sh accepted a missing binary"
+fi
+grep -q "hpcplan not found" "$work/err.txt" || fail "unclear error for a missing binary: $(cat "$work/err.txt")"
+if SLURM_CONF=$work/none.conf bash "$root/slurm/submit.sh" smoke > /dev/null 2> "$work/err.txt"; then
+  fail "submit.sh succeeded without a controller"
+fi
+grep -q "no SLURM controller" "$work/err.txt" || fail "unclear error without a controller: $(cat "$work/err.txt")"
 echo "slurm: ok"
