@@ -70,15 +70,18 @@ def scaling(rows, study, plots):
             t = med([float(r["median_ms"]) for r in rs])
             dev = med([float(r["workload_deviation_percent"]) for r in rs])
             sp = base / t if base and t else None
+            extents = sorted({r["extent"] for r in rs})
+            scale = f"{sp / p:.2f}" if sp and study == "strong" else ",".join(extents)
             lines.append([str(p), f"{cfg[0]} k={cfg[1]}", f"{t:.1f}",
-                          f"{sp:.2f}" if sp else "-", f"{sp / p:.2f}" if sp else "-",
-                          f"{dev:.2f}", str(len(rs))])
+                          f"{sp:.2f}" if sp else "-", scale, f"{dev:.2f}", str(len(rs))])
             if sp:
                 series[cfg].append((p, sp))
         what = "speedup" if study == "strong" else "weak efficiency T(1)/T(P)"
         title = f"{study} scaling — {key[0]}D" + (f" extent {key[1]}" if key[1] != "-" else "")
         title += f", {key[2]}" + (f" (T(1) = {base:.1f} ms)" if base else " (no one-rank time)")
-        table(title, ["P", "configuration", "median ms", what, "per rank", "deviation %", "runs"], lines)
+        table(title, ["P", "configuration", "median ms", what,
+                      "efficiency" if study == "strong" else "extent", "deviation %", "runs"],
+              lines)
         if plots and series:
             import matplotlib
             matplotlib.use("Agg")
