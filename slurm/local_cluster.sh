@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A single-node SLURM on localhost for tests and demos: munge + slurmctld + slurmd, all state
 # (keys, sockets, spool, logs, generated slurm.conf) under one directory, no system files
-# touched. The node gets this machine's cores and ~90% of its memory.
+# touched. The node gets this machine's cores and ~90% of its memory; daemons talk over
+# 127.0.0.1, so the host name need not resolve.
 #   bash slurm/local_cluster.sh start [DIR]   # prints the line to source: export SLURM_CONF=...
 #   bash slurm/local_cluster.sh stop  [DIR]
 #   bash slurm/local_cluster.sh status [DIR]
@@ -39,7 +40,7 @@ start() {
   port=$((20000 + $(printf '%s' "$dir" | cksum | cut -d' ' -f1) % 20000))
   cat > "$conf" <<CONF
 ClusterName=hpcplan
-SlurmctldHost=$host
+SlurmctldHost=$host(127.0.0.1)
 SlurmctldPort=$port
 SlurmdPort=$((port + 1))
 SlurmUser=root
@@ -66,7 +67,7 @@ SlurmctldTimeout=30
 SlurmdTimeout=30
 InactiveLimit=0
 KillWait=5
-NodeName=$host CPUs=$cpus RealMemory=$mem_mb State=UNKNOWN
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=$mem_mb State=UNKNOWN
 PartitionName=local Nodes=$host Default=YES MaxTime=INFINITE State=UP OverSubscribe=FORCE:4
 CONF
   export SLURM_CONF=$conf
