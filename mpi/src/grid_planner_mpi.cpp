@@ -73,16 +73,8 @@ void run_distributed(const GogField& field, const GridProblem& problem, const Gr
         graph, h, owner, comm, eo, d);
     return engine.run(start, goal);
   };
-  DistResult<PackedKey<W>> r;
-  if (o.algorithm == GridAlgorithm::dijkstra || o.algorithm == GridAlgorithm::bfs)
-    r = search(search::ZeroHeuristic{});
-  else if (o.heuristic == HeuristicKind::euclidean)
-    r = search(EuclideanHeuristic<W>(graph.layout(), report.goal));
-  else if (problem.connectivity == Connectivity::full)
-    r = search(FullConnectivityHeuristic<W>(graph.layout(), report.goal));
-  else
-    r = search(SeedRuleHeuristic<W>(graph.layout(), report.goal));
-
+  const auto r =
+      hpcplan::detail::with_heuristic<W>(o, problem, graph.layout(), report.goal, search);
   report.status = r.result.status;
   report.cost = r.result.cost;
   report.hops = r.result.hops;

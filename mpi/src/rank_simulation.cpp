@@ -44,6 +44,7 @@ class OwnershipCensus {
       kind_.push_back(static_cast<int>(it - shifts.begin()));
     }
     hx_.resize(shifts.size());
+    ox_.resize(splits.size());
     ht_.resize(shifts.size());
   }
 
@@ -56,7 +57,10 @@ class OwnershipCensus {
   template <class Emit>
   void for_each_successor(const State& x, Emit&& emit) const {
     hashes(x, hx_);
-    for (std::size_t i = 0; i < splits_.size(); ++i) splits_[i].expanded[owner(hx_, i)]++;
+    for (std::size_t i = 0; i < splits_.size(); ++i) {
+      ox_[i] = owner(hx_, i);  // once per expansion, not per successor
+      splits_[i].expanded[ox_[i]]++;
+    }
     graph_.for_each_successor(x, [&](const State& t, const Cost& c, Move m) {
       hashes(t, ht_);
       const bool fresh = seen_.insert(t).second;
@@ -64,7 +68,7 @@ class OwnershipCensus {
         SimulatedSplit& s = splits_[i];
         const int o = owner(ht_, i);
         s.generated++;
-        if (o != owner(hx_, i)) s.remote_successors++;
+        if (o != ox_[i]) s.remote_successors++;
         if (fresh) s.stored[o]++;
       }
       emit(t, c, m);
@@ -90,6 +94,7 @@ class OwnershipCensus {
   std::vector<Ownership<W>> cells_;  // one per shift, used for cell() only
   std::vector<int> kind_;            // split -> index into cells_
   mutable std::vector<std::uint64_t> hx_, ht_;
+  mutable std::vector<int> ox_;  // the expanded state's owner, per split
   mutable absl::flat_hash_set<State, Hash> seen_;
 };
 
@@ -103,18 +108,10 @@ void run(const GogField& field, const GridProblem& problem, const GridSearchOpti
   const auto goal = graph.pack(report.goal);
   census.observe_start(start);
   const auto eo = hpcplan::detail::engine_options(o, report.weight, report.max_states);
-  auto search = [&](const auto& h) {
-    return search::best_first_search<search::DefaultVisitedMap>(census, start, goal, h, eo);
-  };
-  search::Result<PackedKey<W>> r;
-  if (o.algorithm == GridAlgorithm::dijkstra || o.algorithm == GridAlgorithm::bfs)
-    r = search(search::ZeroHeuristic{});
-  else if (o.heuristic == HeuristicKind::euclidean)
-    r = search(EuclideanHeuristic<W>(graph.layout(), report.goal));
-  else if (problem.connectivity == Connectivity::full)
-    r = search(FullConnectivityHeuristic<W>(graph.layout(), report.goal));
-  else
-    r = search(SeedRuleHeuristic<W>(graph.layout(), report.goal));
+  const auto r = hpcplan::detail::with_heuristic<W>(
+      o, problem, graph.layout(), report.goal, [&](const auto& h) {
+        return search::best_first_search<search::DefaultVisitedMap>(census, start, goal, h, eo);
+      });
   report.status = r.status;
   report.cost = r.cost;
   report.hops = r.hops;

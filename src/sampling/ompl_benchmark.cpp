@@ -67,27 +67,34 @@ double free_volume(const GogField& field) {
          (1.0 - field.blocked_fraction());
 }
 
+ob::PlannerPtr grid(const GogWorld& w, const OmplBenchOptions& o, bool smoothing) {
+  auto p = std::make_shared<GridAStarPlanner>(w);
+  p->setShortcut(smoothing);
+  p->setWeight(o.grid_weight);
+  p->setTimeLimit(o.time_s);
+  return p;
+}
+
+ob::PlannerPtr fmt(const GogWorld& w, const OmplBenchOptions& o, bool nearest_k) {
+  auto p = std::make_shared<WithoutProgress<og::FMT>>(w.si);
+  p->setNumSamples(fmt_samples(o.dims));
+  p->setFreeSpaceVolume(free_volume(*w.field));
+  if (!nearest_k) {
+    p->setNearestK(false);
+    p->setRadiusMultiplier(1.0);
+  }
+  return p;
+}
+
 const std::map<std::string, PlannerKind>& planner_table() {
   static const std::map<std::string, PlannerKind> table = {
       {"gridastar",
        {"GridAStar",
-        [](const GogWorld& w, const OmplBenchOptions& o) {
-          auto p = std::make_shared<GridAStarPlanner>(w);
-          p->setShortcut(o.shortcut);
-          p->setWeight(o.grid_weight);
-          p->setTimeLimit(o.time_s);
-          return ob::PlannerPtr(p);
-        }}},
+        [](const GogWorld& w, const OmplBenchOptions& o) { return grid(w, o, o.shortcut); }}},
       // The lattice path as found, for the time and quality of the search alone.
       {"gridastar_lattice",
        {"GridAStarLattice",
-        [](const GogWorld& w, const OmplBenchOptions& o) {
-          auto p = std::make_shared<GridAStarPlanner>(w);
-          p->setShortcut(false);
-          p->setWeight(o.grid_weight);
-          p->setTimeLimit(o.time_s);
-          return ob::PlannerPtr(p);
-        }}},
+        [](const GogWorld& w, const OmplBenchOptions& o) { return grid(w, o, false); }}},
       {"bitstar",
        {"kBITstar",
         [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::BITstar>(w); }}},
@@ -99,25 +106,12 @@ const std::map<std::string, PlannerKind>& planner_table() {
         [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::AITstar>(w); }}},
       // Seed 002 eq. 1 samples, k-nearest connections (OMPL's default).
       {"fmt",
-       {"FMT",
-        [](const GogWorld& w, const OmplBenchOptions& o) {
-          auto p = std::make_shared<WithoutProgress<og::FMT>>(w.si);
-          p->setNumSamples(fmt_samples(o.dims));
-          p->setFreeSpaceVolume(free_volume(*w.field));
-          return ob::PlannerPtr(p);
-        }}},
+       {"FMT", [](const GogWorld& w, const OmplBenchOptions& o) { return fmt(w, o, true); }}},
       // The same samples with radius connections: the k-nearest rule's k grows with d, the
       // radius rule's neighbourhoods shrink with the free volume instead.
       {"fmt_radius",
        {"FMTradius",
-        [](const GogWorld& w, const OmplBenchOptions& o) {
-          auto p = std::make_shared<WithoutProgress<og::FMT>>(w.si);
-          p->setNumSamples(fmt_samples(o.dims));
-          p->setNearestK(false);
-          p->setRadiusMultiplier(1.0);
-          p->setFreeSpaceVolume(free_volume(*w.field));
-          return ob::PlannerPtr(p);
-        }}},
+        [](const GogWorld& w, const OmplBenchOptions& o) { return fmt(w, o, false); }}},
       {"rrtconnect",
        {"RRTConnect",
         [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::RRTConnect>(w); }}},
@@ -221,7 +215,6 @@ OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o, const std::string&
     ob::PlannerPtr p = kind.make(world, o);
     p->setName(kind.ompl_name);  // BIT* may amend it (k-nearest BIT* is "kBITstar")
     user_name[p->getName()] = name;
-    result.ompl_names.push_back(p->getName());
     bench.addPlanner(p);
   }
 

@@ -59,8 +59,8 @@ TighteningStats tighten_path(const ob::SpaceInformationPtr& si, og::PathGeometri
   TighteningStats stats;
   stats.length_before = length_of(si, states);
   double length = stats.length_before;
-  const auto* real_ = dynamic_cast<const ob::RealVectorStateSpace*>(si->getStateSpace().get());
-  const unsigned dims_ = si->getStateDimension();
+  const auto* real = dynamic_cast<const ob::RealVectorStateSpace*>(si->getStateSpace().get());
+  const unsigned dims = si->getStateDimension();
   ob::State* mid = si->allocState();
   ob::State* trial = si->allocState();
   while (stats.rounds < max_rounds && !ptc()) {
@@ -83,8 +83,8 @@ TighteningStats tighten_path(const ob::SpaceInformationPtr& si, og::PathGeometri
       }
       // Blocked against a face: slide along it, one coordinate at a time (real vector spaces;
       // the GOG obstacles are axis-aligned, so this is the move that stays clear of a face).
-      if (!moved && real_ != nullptr) {
-        for (unsigned k = 0; k < dims_; ++k) {
+      if (!moved && real != nullptr) {
+        for (unsigned k = 0; k < dims; ++k) {
           for (double step = 1.0; step >= 0.25; step *= 0.5) {
             si->copyState(trial, states[i]);
             double* t = trial->as<ob::RealVectorStateSpace::StateType>()->values;

@@ -21,6 +21,7 @@
 #include "hpcplan/sampling/gog_world.hpp"
 #include "hpcplan/sampling/grid_astar_planner.hpp"
 #include "hpcplan/sampling/ompl_benchmark.hpp"
+#include "hpcplan/sampling/path_tightening.hpp"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -235,6 +236,27 @@ TEST_P(GridPlannerInOmpl, LatticePathIsTheSearchCostAndShortcutsOnlyShorten) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Dims, GridPlannerInOmpl, ::testing::Values(2, 3, 4, 6));
+
+// The tightener alone, on the lattice path: it reports what it did, never lengthens the path,
+// keeps its ends, and leaves every motion valid under the world's (exact) validator.
+TEST(PathTightening, ShortensALatticePathAndKeepsItValid) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  const GogWorld w = world_for(4, 40);
+  og::PathGeometric path = solve_with_grid(w, false, nullptr);
+  const og::PathGeometric before = path;
+  const auto stats = tighten_path(w.si, path, ob::plannerNonTerminatingCondition(), 2.0);
+  EXPECT_GE(stats.rounds, 1);
+  EXPECT_NEAR(stats.length_before, before.length(), 1e-9);
+  EXPECT_NEAR(stats.length_after, path.length(), 1e-9);
+  EXPECT_LT(stats.length_after, stats.length_before);  // 4D lattice paths have slack
+  EXPECT_TRUE(path.check());
+  EXPECT_EQ(w.si->distance(path.getState(0), before.getState(0)), 0.0);
+  EXPECT_EQ(w.si->distance(path.getState(path.getStateCount() - 1),
+                           before.getState(before.getStateCount() - 1)),
+            0.0);
+  for (std::size_t i = 1; i < path.getStateCount(); ++i)
+    EXPECT_TRUE(w.si->checkMotion(path.getState(i - 1), path.getState(i))) << "segment " << i;
+}
 
 TEST(GridPlannerInOmpl, DeclaresItsParametersToOmpl) {
   const GogWorld w = world_for(2, 20);

@@ -37,7 +37,6 @@ class Progress {
                  tty_ ? "\033[K" : "\n");
     std::fflush(stderr);
   }
-  bool enabled() const { return enabled_; }
 
  private:
   std::string what_;

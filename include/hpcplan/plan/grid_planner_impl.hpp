@@ -31,6 +31,19 @@ inline search::Options engine_options(const GridSearchOptions& o, double weight,
   return e;
 }
 
+// Calls search(h) with the heuristic the options ask for (none for Dijkstra and BFS), so
+// every caller that searches a lattice picks heuristics the same way.
+template <int W, class Search>
+auto with_heuristic(const GridSearchOptions& o, const GridProblem& problem, const KeyLayout& layout,
+                    const std::vector<int>& goal, Search&& search) {
+  if (o.algorithm == GridAlgorithm::dijkstra || o.algorithm == GridAlgorithm::bfs)
+    return search(search::ZeroHeuristic{});
+  if (o.heuristic == HeuristicKind::euclidean) return search(EuclideanHeuristic<W>(layout, goal));
+  if (problem.connectivity == Connectivity::full)
+    return search(FullConnectivityHeuristic<W>(layout, goal));
+  return search(SeedRuleHeuristic<W>(layout, goal));
+}
+
 template <class MapPolicy, int W>
 void run_search(const GogField& field, const GridProblem& problem, const GridSearchOptions& o,
                 GridReport& report) {
@@ -39,19 +52,9 @@ void run_search(const GogField& field, const GridProblem& problem, const GridSea
   const auto goal = graph.pack(report.goal);
   const auto eo = engine_options(o, report.weight, report.max_states);
 
-  search::Result<PackedKey<W>> r;
-  if (o.algorithm == GridAlgorithm::dijkstra || o.algorithm == GridAlgorithm::bfs) {
-    r = search::best_first_search<MapPolicy>(graph, start, goal, search::ZeroHeuristic{}, eo);
-  } else if (o.heuristic == HeuristicKind::euclidean) {
-    r = search::best_first_search<MapPolicy>(
-        graph, start, goal, EuclideanHeuristic<W>(graph.layout(), report.goal), eo);
-  } else if (problem.connectivity == Connectivity::full) {
-    r = search::best_first_search<MapPolicy>(
-        graph, start, goal, FullConnectivityHeuristic<W>(graph.layout(), report.goal), eo);
-  } else {
-    r = search::best_first_search<MapPolicy>(graph, start, goal,
-                                             SeedRuleHeuristic<W>(graph.layout(), report.goal), eo);
-  }
+  const auto r = with_heuristic<W>(o, problem, graph.layout(), report.goal, [&](const auto& h) {
+    return search::best_first_search<MapPolicy>(graph, start, goal, h, eo);
+  });
   report.status = r.status;
   report.cost = r.cost;
   report.hops = r.hops;

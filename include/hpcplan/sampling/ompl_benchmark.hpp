@@ -59,9 +59,8 @@ struct OmplRunRow {
 struct OmplBenchResult {
   std::vector<OmplRunRow> rows;
   double straight_line = 0.0;
-  double reference_quality = -1.0;      // best final quality of any run (-1 if none solved)
-  std::vector<double> start, goal;      // the continuous start and goal (cell centres)
-  std::vector<std::string> ompl_names;  // planner names as they appear in the OMPL log
+  double reference_quality = -1.0;  // best final quality of any run (-1 if none solved)
+  std::vector<double> start, goal;  // the continuous start and goal (cell centres)
 };
 
 // Names accepted in OmplBenchOptions::planners.
