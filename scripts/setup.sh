@@ -8,7 +8,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libabsl-dev nlohmann-json3-dev libcli11-dev robin-map-dev
   libopenmpi-dev openmpi-bin procps
-  libompl-dev ompl-demos python3-matplotlib
+  libompl-dev ompl-demos python3-matplotlib libnanoflann-dev
   slurm-wlm munge
 )
 

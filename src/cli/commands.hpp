@@ -18,5 +18,7 @@ struct Context {
 using Action = std::function<int(const Context&)>;
 Action register_grid_command(CLI::App& app);
 Action register_ompl_command(CLI::App& app);
+Action register_map3d_command(CLI::App& app);
+Action register_sphere2d_command(CLI::App& app);
 
 }  // namespace hpcplan::cli

@@ -46,6 +46,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   hpcplan::cli::Action grid = hpcplan::cli::register_grid_command(app);
   hpcplan::cli::Action ompl = hpcplan::cli::register_ompl_command(app);
+  hpcplan::cli::Action map3d = hpcplan::cli::register_map3d_command(app);
+  hpcplan::cli::Action sphere2d = hpcplan::cli::register_sphere2d_command(app);
   // Bad input is detected identically on every rank before any communication, so every rank
   // returns and only rank 0 speaks.
   try {
@@ -64,6 +66,8 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("grid")) return grid(context);
     if (app.got_subcommand("ompl")) return ompl(context);
+    if (app.got_subcommand("map3d")) return map3d(context);
+    if (app.got_subcommand("sphere2d")) return sphere2d(context);
     return root ? report(hpcplan::kExitBadInput, "no subcommand given") : hpcplan::kExitBadInput;
   } catch (const hpcplan::InputError& e) {
     return root ? report(hpcplan::kExitBadInput, e.what()) : hpcplan::kExitBadInput;

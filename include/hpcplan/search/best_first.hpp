@@ -17,6 +17,35 @@
 
 namespace hpcplan::search {
 
+// Fills in the counters and, for a solved search, the path traced back through the store,
+// re-validated edge by edge and checked against the search's own cost. Shared by every serial
+// search over a SearchStore (best_first_search, lazy_theta_star).
+template <class Store, class G>
+Result<typename G::State>& complete_result(Result<typename G::State>& result, const Store& store,
+                                           const G& graph, const typename G::State& start,
+                                           const typename G::State& goal, Status status,
+                                           bool solved, std::uint64_t checks_before,
+                                           const Stopwatch& clock) {
+  Counters& counters = result.counters;
+  counters.peak_states = store.stored();
+  counters.peak_open = store.peak_open();
+  counters.reopened = store.reopened();
+  counters.collision_checks = graph.collision_checks() - checks_before;
+  result.status = status;
+  if (solved) {
+    result.path = trace_back(store, graph, goal);
+    if (!(result.path.front() == start))
+      throw RunError("internal error: reconstructed path does not join start and goal");
+    const double length = validated_length(graph, result.path);
+    result.cost = cost_value(store.find(goal)->g);
+    if (std::abs(length - result.cost) > 1e-9 * (1.0 + result.cost))
+      throw RunError("internal error: path length disagrees with the search's cost");
+    result.hops = result.path.size() - 1;
+  }
+  counters.time_ms = clock.milliseconds();
+  return result;
+}
+
 template <class MapPolicy = DefaultVisitedMap, SearchGraph G, class Heuristic>
 Result<typename G::State> best_first_search(const G& graph, const typename G::State& start,
                                             const typename G::State& goal, const Heuristic& h,
@@ -33,23 +62,7 @@ Result<typename G::State> best_first_search(const G& graph, const typename G::St
   const bool is_fifo = options.frontier == Frontier::fifo;
 
   auto finish = [&](Status status, bool solved) {
-    counters.peak_states = store.stored();
-    counters.peak_open = store.peak_open();
-    counters.reopened = store.reopened();
-    counters.collision_checks = graph.collision_checks() - checks_before;
-    result.status = status;
-    if (solved) {
-      result.path = trace_back(store, graph, goal);
-      if (!(result.path.front() == start))
-        throw RunError("internal error: reconstructed path does not join start and goal");
-      const double length = validated_length(graph, result.path);
-      result.cost = cost_value(store.find(goal)->g);
-      if (std::abs(length - result.cost) > 1e-9 * (1.0 + result.cost))
-        throw RunError("internal error: path length disagrees with the search's cost");
-      result.hops = result.path.size() - 1;
-    }
-    counters.time_ms = clock.milliseconds();
-    return result;
+    return complete_result(result, store, graph, start, goal, status, solved, checks_before, clock);
   };
 
   store.offer(start, Cost{}, G::kNoMove);

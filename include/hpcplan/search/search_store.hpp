@@ -16,6 +16,7 @@
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/huge_page_allocator.hpp"
+#include "hpcplan/core/splitmix64.hpp"
 #include "hpcplan/graph/lattice_cost.hpp"
 #include "hpcplan/search/visited_map.hpp"
 
@@ -36,7 +37,9 @@ concept SearchGraph = requires(const G& g, const typename G::State& s, typename 
   g.for_each_successor(s, [](const typename G::State&, typename G::Cost, typename G::Move) {});
 };
 
-enum class Frontier { best_first, fifo };
+// best_first: a heap on f; fifo: BFS; random: any open state, uniformly (the seed 003 hybrid's
+// "random choice from the open list"; complete, but neither optimal nor bounded).
+enum class Frontier { best_first, fifo, random };
 
 struct Options {
   Frontier frontier = Frontier::best_first;
@@ -44,6 +47,8 @@ struct Options {
   bool reopen_closed = true;     // false for serial weighted A*
   std::uint64_t max_states = 0;  // visited-map size limit; 0 = none
   double time_limit_s = 0.0;     // 0 = none
+  std::uint64_t seed = 1;        // Frontier::random only
+  std::uint64_t dense_keys = 0;  // map policies with a dense range: keys below this bound
 };
 
 struct ZeroHeuristic {
@@ -78,11 +83,17 @@ class SearchStore {
   SearchStore(const Heuristic& h, const Options& options)
       : h_(h),
         fifo_(options.frontier == Frontier::fifo),
-        reopen_(options.reopen_closed && !fifo_),
+        // A random frontier closes states in no useful order; reopening one would leave its
+        // descendants' costs stale, so closed states stay as they are.
+        reopen_(options.reopen_closed && options.frontier == Frontier::best_first),
         weight_(options.weight),
-        max_states_(options.max_states) {
+        random_(options.frontier == Frontier::random),
+        max_states_(options.max_states),
+        rng_(options.seed) {
     // Small searches (2D, replanning, benchmark loops) would otherwise spend a third of
     // their time growing the map and heap through a dozen rehashes and re-faulted pages.
+    if constexpr (requires { visited_.set_dense_keys(options.dense_keys); })
+      visited_.set_dense_keys(options.dense_keys);
     visited_.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(max_states_, kInitial)));
     if (!fifo_) heap_.reserve(kInitial / 4);
   }
@@ -120,7 +131,10 @@ class SearchStore {
       return true;
     }
     while (!heap_.empty()) {
-      std::pop_heap(heap_.begin(), heap_.end(), lower_priority);
+      if (random_)
+        std::swap(heap_[rng_.next_below(heap_.size())], heap_.back());
+      else
+        std::pop_heap(heap_.begin(), heap_.end(), lower_priority);
       const Entry e = heap_.back();
       heap_.pop_back();
       Node& node = mapped(visited_.find(e.state));
@@ -137,6 +151,13 @@ class SearchStore {
   const Node* find(const State& s) const {
     auto it = visited_.find(s);
     return it == visited_.end() ? nullptr : &it->second;
+  }
+  // Gives a stored state a new cost and parent move without reopening it (Lazy Theta*'s
+  // repair of a parent that turned out not to be visible).
+  void reparent(const State& s, const Cost& g, Move m) {
+    Node& node = mapped(visited_.find(s));
+    node.g = g;
+    node.move = m;
   }
   // Lowest priority on the open list (may belong to a stale entry), +inf when empty.
   double best_priority() const {
@@ -189,7 +210,7 @@ class SearchStore {
       size = fifo_queue_.size();
     } else {
       heap_.push_back(Entry{priority(g, s), cost_value(g), s});
-      std::push_heap(heap_.begin(), heap_.end(), lower_priority);
+      if (!random_) std::push_heap(heap_.begin(), heap_.end(), lower_priority);
       size = heap_.size();
     }
     peak_open_ = std::max<std::uint64_t>(peak_open_, size);
@@ -201,7 +222,9 @@ class SearchStore {
   bool fifo_;
   bool reopen_;
   double weight_;
+  bool random_;
   std::uint64_t max_states_;
+  SplitMix64 rng_;
   typename MapPolicy::template type<State, Node, typename G::Hash> visited_;
   std::vector<Entry, HugePageAllocator<Entry>> heap_;
   std::deque<std::pair<State, Cost>> fifo_queue_;  // BFS: each state with its g

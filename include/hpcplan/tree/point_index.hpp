@@ -1,0 +1,64 @@
+#pragma once
+// Nearest-neighbour queries over a growing tree of points, on nanoflann's dynamic KD-tree
+// (a logarithmic forest of static trees, so insertions stay cheap).
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+// nanoflann 1.4 leaves a bounding box uninitialised until the first build (harmless here).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <nanoflann.hpp>
+#pragma GCC diagnostic pop
+
+#include "hpcplan/world/point.hpp"
+
+namespace hpcplan::tree {
+
+template <int D>
+class PointIndex {
+ public:
+  // `points` is the caller's storage; call added() after each push_back.
+  explicit PointIndex(const std::vector<world::Vec<D>>& points)
+      : source_{&points}, tree_(D, source_, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {}
+
+  void added(std::size_t i) {
+    tree_.addPoints(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i));
+  }
+
+  std::size_t nearest(const world::Vec<D>& q) const {
+    std::size_t index = 0;
+    double d2 = 0.0;
+    nanoflann::KNNResultSet<double, std::size_t> result(1);
+    result.init(&index, &d2);
+    tree_.findNeighbors(result, q.data(), nanoflann::SearchParams());
+    return index;
+  }
+
+  // Every point within `radius` of q, as (index, squared distance).
+  void within(const world::Vec<D>& q, double radius,
+              std::vector<std::pair<std::size_t, double>>& out) const {
+    nanoflann::RadiusResultSet<double, std::size_t> result(radius * radius, out);
+    tree_.findNeighbors(result, q.data(), nanoflann::SearchParams());
+  }
+
+ private:
+  // nanoflann's dataset adaptor: the points as a read-only table.
+  struct Source {
+    const std::vector<world::Vec<D>>* points;
+    std::size_t kdtree_get_point_count() const { return points->size(); }
+    double kdtree_get_pt(std::size_t i, std::size_t k) const { return (*points)[i][k]; }
+    template <class Box>
+    bool kdtree_get_bbox(Box&) const {
+      return false;
+    }
+  };
+  using Tree =
+      nanoflann::KDTreeSingleIndexDynamicAdaptor<nanoflann::L2_Simple_Adaptor<double, Source>,
+                                                 Source, D>;
+
+  Source source_;
+  Tree tree_;
+};
+
+}  // namespace hpcplan::tree

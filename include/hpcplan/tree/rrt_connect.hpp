@@ -1,0 +1,85 @@
+#pragma once
+// RRT-Connect (Kuffner and LaValle 2000): a tree from the start and one from the goal take
+// turns; one extends a step towards a sample, the other then steps greedily towards the new
+// vertex until it reaches it (the trees join) or is blocked.
+#include <array>
+
+#include "hpcplan/tree/point_index.hpp"
+#include "hpcplan/tree/tree_common.hpp"
+
+namespace hpcplan::tree {
+
+template <world::World W>
+TreeResult<W::kDim> rrt_connect(const W& world, const world::Vec<W::kDim>& start,
+                                const world::Vec<W::kDim>& goal, const TreeOptions& o) {
+  constexpr int D = W::kDim;
+  check_query(world, start, goal);
+  Stopwatch clock;
+  const std::uint64_t checks0 = world.collision_checks();
+  const double step = o.step > 0 ? o.step : default_step<D>(world.bounds());
+  struct Tree {
+    std::vector<world::Vec<D>> points;
+    std::vector<std::uint32_t> parent;
+    PointIndex<D> index{points};
+    std::uint32_t add(const world::Vec<D>& p, std::uint32_t from) {
+      points.push_back(p);
+      parent.push_back(from);
+      index.added(points.size() - 1);
+      return static_cast<std::uint32_t>(points.size() - 1);
+    }
+  };
+  Tree from_start, from_goal;
+  from_start.add(start, 0);
+  from_goal.add(goal, 0);
+  Sampler<D> sampler(world.bounds(), start, goal, o.seed);
+  TreeResult<D> r;
+  auto done = [&](search::Status status, std::uint32_t a = 0, std::uint32_t b = 0) {
+    r.status = status;
+    r.tree_size = from_start.points.size() + from_goal.points.size();
+    r.collision_checks = world.collision_checks() - checks0;
+    if (status == search::Status::solved) {
+      r.path = branch<D>(from_start.points, from_start.parent, a);
+      auto back = branch<D>(from_goal.points, from_goal.parent, b);
+      // The joining vertex may be the same point in both trees.
+      std::size_t skip = r.path.back() == back.back() ? 1 : 0;
+      for (auto it = back.rbegin() + static_cast<std::ptrdiff_t>(skip); it != back.rend(); ++it)
+        r.path.push_back(*it);
+      r.length = path_length<D>(r.path);
+    }
+    r.time_ms = clock.milliseconds();
+    if (status == search::Status::solved) r.first_time_ms = r.time_ms, r.first_length = r.length;
+    return r;
+  };
+  if (world.segment_free(start, goal)) return done(search::Status::solved, 0, 0);
+
+  Tree* a = &from_start;
+  Tree* b = &from_goal;
+  for (;;) {
+    if ((r.samples & 255) == 0 && clock.seconds() > o.time_limit_s)
+      return done(search::Status::timeout);
+    if (o.max_samples && r.samples >= o.max_samples) return done(search::Status::no_path);
+    ++r.samples;
+    const world::Vec<D> target = sampler.uniform();
+    const auto near = static_cast<std::uint32_t>(a->index.nearest(target));
+    const world::Vec<D> q = steer<D>(a->points[near], target, step);
+    if (world.segment_free(a->points[near], q)) {
+      const std::uint32_t qa = a->add(q, near);
+      // Connect: the other tree walks towards q.
+      auto nb = static_cast<std::uint32_t>(b->index.nearest(q));
+      for (;;) {
+        const world::Vec<D> next = steer<D>(b->points[nb], q, step);
+        if (!world.segment_free(b->points[nb], next)) break;
+        if (next == q) {
+          // Joined: the start tree's vertex and the goal tree's vertex meet at the same point.
+          if (a == &from_start) return done(search::Status::solved, qa, nb);
+          const std::uint32_t in_goal_tree = qa;
+          return done(search::Status::solved, nb, in_goal_tree);
+        }
+        nb = b->add(next, nb);
+      }
+    }
+    std::swap(a, b);
+  }
+}
+
+}  // namespace hpcplan::tree

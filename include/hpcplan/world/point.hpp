@@ -1,0 +1,72 @@
+#pragma once
+// Points of the continuous worlds (2D sphere world, 3D box maps) and the little vector algebra
+// the planners need; a world is any type with kDim, bounds, point_free and segment_free.
+#include <array>
+#include <cmath>
+#include <concepts>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+namespace hpcplan::world {
+
+template <int D>
+using Vec = std::array<double, D>;
+
+template <int D>
+double distance(const Vec<D>& a, const Vec<D>& b) {
+  double s = 0.0;
+  for (int k = 0; k < D; ++k) s += (a[k] - b[k]) * (a[k] - b[k]);
+  return std::sqrt(s);
+}
+
+// a + t (b - a)
+template <int D>
+Vec<D> lerp(const Vec<D>& a, const Vec<D>& b, double t) {
+  Vec<D> p;
+  for (int k = 0; k < D; ++k) p[k] = a[k] + t * (b[k] - a[k]);
+  return p;
+}
+
+template <int D>
+struct Aabb {
+  Vec<D> lo, hi;
+  // Closed box: touching the surface counts as inside.
+  bool contains(const Vec<D>& p) const {
+    for (int k = 0; k < D; ++k)
+      if (p[k] < lo[k] || p[k] > hi[k]) return false;
+    return true;
+  }
+  double volume() const {
+    double v = 1.0;
+    for (int k = 0; k < D; ++k) v *= hi[k] - lo[k];
+    return v;
+  }
+};
+
+template <int D>
+std::string format_point(const Vec<D>& p) {
+  std::string s = "(";
+  for (int k = 0; k < D; ++k) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%s%g", k ? ", " : "", p[k]);
+    s += buf;
+  }
+  return s + ")";
+}
+
+// What planners need of a world. Obstacles are closed sets: a point on an obstacle's surface
+// is in collision, and so is a segment that only touches one. Queries count themselves in
+// collision_checks() (a plain counter: one world serves one planning thread at a time).
+template <class W>
+concept World = requires(const W& w, const Vec<W::kDim>& p) {
+  { W::kDim } -> std::convertible_to<int>;
+  { w.bounds() } -> std::convertible_to<Aabb<W::kDim>>;
+  { w.point_free(p) } -> std::same_as<bool>;
+  { w.segment_free(p, p) } -> std::same_as<bool>;
+  { w.collision_checks() } -> std::convertible_to<std::uint64_t>;
+  { w.free_volume() } -> std::convertible_to<double>;
+  { w.why_not_free(p) } -> std::convertible_to<std::string>;
+};
+
+}  // namespace hpcplan::world

@@ -1,0 +1,192 @@
+// hpcplan map3d / hpcplan sphere2d: one plan in a continuous world (a seed 004 box map, or a
+// seed 003 sphere world) with any of the world planners, as a summary table or JSON.
+#include <cstdio>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/io/atomic_file.hpp"
+#include "hpcplan/plan/world_planner.hpp"
+#include "hpcplan/world/box_map_io.hpp"
+#include "hpcplan/world/sphere_world.hpp"
+
+namespace hpcplan::cli {
+
+namespace {
+
+struct WorldArgs {
+  std::string map, start, goal, path_out, output;
+  plan::WorldPlanOptions options;
+  bool json = false;
+};
+
+template <int D>
+world::Vec<D> parse_point(const std::string& text, const char* option) {
+  world::Vec<D> p{};
+  std::stringstream in(text);
+  std::string item;
+  int k = 0;
+  while (std::getline(in, item, ',')) {
+    if (k == D) break;
+    try {
+      std::size_t used = 0;
+      p[k] = std::stod(item, &used);
+      if (used != item.size() || !std::isfinite(p[k])) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw InputError(std::string(option) + ": '" + item + "' is not a finite number");
+    }
+    ++k;
+  }
+  if (k != D || std::getline(in, item))
+    throw InputError(std::string(option) + " needs " + std::to_string(D) +
+                     " comma-separated coordinates, got '" + text + "'");
+  return p;
+}
+
+template <int D>
+nlohmann::json to_json(const plan::WorldPlan<D>& p) {
+  nlohmann::json path = nlohmann::json::array();
+  for (const auto& q : p.path) path.push_back(q);
+  nlohmann::json j = {{"status", p.status},
+                      {"algo", p.algo},
+                      {"length", p.length},
+                      {"raw_length", p.raw_length},
+                      {"time_ms", p.time_ms},
+                      {"plan_ms", p.plan_ms},
+                      {"expanded", p.expanded},
+                      {"tree_size", p.tree_size},
+                      {"collision_checks", p.collision_checks},
+                      {"waypoints", p.path.size()},
+                      {"path", path}};
+  if (p.first_time_ms >= 0) j["first_solution_ms"] = p.first_time_ms;
+  return j;
+}
+
+template <int D>
+std::string summary(const plan::WorldPlan<D>& p, const std::string& map) {
+  char buf[512];
+  std::string s;
+  std::snprintf(buf, sizeof buf, "%-18s %s\n", "map", map.c_str());
+  s += buf;
+  const std::pair<const char*, std::string> rows[] = {
+      {"algorithm", p.algo},
+      {"status", p.status},
+      {"length", std::to_string(p.length)},
+      {"as planned", std::to_string(p.raw_length)},
+      {"waypoints", std::to_string(p.path.size())},
+      {"time (ms)", std::to_string(p.time_ms)},
+      {"expanded", std::to_string(p.expanded)},
+      {"tree / stored", std::to_string(p.tree_size)},
+      {"collision checks", std::to_string(p.collision_checks)},
+  };
+  for (const auto& [k, v] : rows) {
+    std::snprintf(buf, sizeof buf, "%-18s %s\n", k, v.c_str());
+    s += buf;
+  }
+  return s;
+}
+
+template <int D>
+std::string path_csv(const plan::WorldPlan<D>& p) {
+  std::string s = D == 3 ? "x,y,z\n" : "x,y\n";
+  char buf[128];
+  for (const auto& q : p.path) {
+    for (int k = 0; k < D; ++k) {
+      std::snprintf(buf, sizeof buf, "%s%.17g", k ? "," : "", q[k]);
+      s += buf;
+    }
+    s += "\n";
+  }
+  return s;
+}
+
+template <class Map>
+int run(const WorldArgs& a, const Map& map) {
+  constexpr int D = std::remove_cvref_t<decltype(map.world)>::kDim;
+  world::Vec<D> start, goal;
+  if (!a.start.empty())
+    start = parse_point<D>(a.start, "--start");
+  else if (map.start)
+    start = *map.start;
+  else
+    throw InputError("no --start given and the map has no start line");
+  if (!a.goal.empty())
+    goal = parse_point<D>(a.goal, "--goal");
+  else if (map.goal)
+    goal = *map.goal;
+  else
+    throw InputError("no --goal given and the map has no goal line");
+
+  const plan::WorldPlan<D> p = plan::plan_in_world(map.world, start, goal, a.options);
+  const std::string json = to_json(p).dump() + "\n";
+  if (!a.output.empty()) write_file_atomically(a.output, json);
+  if (!a.path_out.empty() && p.status == "solved") write_file_atomically(a.path_out, path_csv(p));
+  std::fputs(a.json ? json.c_str() : summary(p, a.map).c_str(), stdout);
+  if (p.status != "solved") {
+    std::fflush(stdout);
+    std::fprintf(stderr, "hpcplan: error: %s found no path (%s)%s\n", p.algo.c_str(),
+                 p.status.c_str(),
+                 p.status == "timeout" ? "; raise --time" : "; try a finer --resolution");
+    return kExitRunFailure;
+  }
+  return kExitOk;
+}
+
+void add_common(CLI::App* cmd, const std::shared_ptr<WorldArgs>& args, const char* point,
+                double resolution) {
+  auto& o = args->options;
+  o.resolution = resolution;
+  cmd->add_option("--map", args->map, "World file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--start", args->start, std::string("Start ") + point + " (default: the map's)");
+  cmd->add_option("--goal", args->goal, std::string("Goal ") + point + " (default: the map's)");
+  cmd->add_option("--algo", o.algo,
+                  "astar|wastar|dijkstra|thetastar|rrt|birrt|rrtstar|hybrid|hybrid_pick|"
+                  "hybrid_sample|ompl:<name>")
+      ->capture_default_str();
+  cmd->add_option("--resolution", o.resolution, "Grid spacing of the searches")
+      ->capture_default_str();
+  cmd->add_option("--weight", o.weight, "Heuristic weight of wastar (>= 1)")->capture_default_str();
+  cmd->add_option("--seed", o.seed, "Random seed")->capture_default_str();
+  cmd->add_option("--time", o.time_s,
+                  "Seconds: RRT* and OMPL's anytime planners refine until then; others give up")
+      ->capture_default_str();
+  cmd->add_option("--step", o.step, "Tree planners' step (0 = a twentieth of the world)")
+      ->capture_default_str();
+  cmd->add_option("--samples", o.samples_per_expansion, "Hybrid: random points drawn per expansion")
+      ->capture_default_str();
+  cmd->add_option("--max-states", o.max_states, "Grid searches: stop beyond this many states");
+  cmd->add_flag("--shortcut", o.shortcut, "Shortcut and tighten the path");
+  cmd->add_flag("--json", args->json, "Print one JSON object instead of a summary");
+  cmd->add_option("--path-out", args->path_out, "Write the path as CSV (atomically)");
+  cmd->add_option("--output", args->output, "Also write the JSON result to this file (atomically)");
+}
+
+}  // namespace
+
+Action register_map3d_command(CLI::App& app) {
+  auto args = std::make_shared<WorldArgs>();
+  CLI::App* cmd = app.add_subcommand("map3d", "Plan in a 3D box map (seeds 001/004)");
+  add_common(cmd, args, "x,y,z", 0.1);
+  return [args](const Context& context) {
+    if (context.comm && context.comm->size() > 1)
+      throw InputError("map3d runs in one process; start it without mpirun");
+    return run(*args, world::load_box_map(args->map));
+  };
+}
+
+Action register_sphere2d_command(CLI::App& app) {
+  auto args = std::make_shared<WorldArgs>();
+  CLI::App* cmd = app.add_subcommand("sphere2d", "Plan in a 2D sphere world (seed 003)");
+  add_common(cmd, args, "x,y", 0.25);
+  return [args](const Context& context) {
+    if (context.comm && context.comm->size() > 1)
+      throw InputError("sphere2d runs in one process; start it without mpirun");
+    return run(*args, world::load_sphere_map(args->map));
+  };
+}
+
+}  // namespace hpcplan::cli

@@ -1,0 +1,175 @@
+#include "hpcplan/plan/world_planner.hpp"
+
+#include <algorithm>
+
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/core/stopwatch.hpp"
+#include "hpcplan/graph/continuous_grid.hpp"
+#include "hpcplan/sampling/world_ompl.hpp"
+#include "hpcplan/search/best_first.hpp"
+#include "hpcplan/search/dense_visited_map.hpp"
+#include "hpcplan/search/lazy_theta_star.hpp"
+#include "hpcplan/tree/rrt.hpp"
+#include "hpcplan/tree/rrt_connect.hpp"
+#include "hpcplan/tree/rrt_star.hpp"
+#include "hpcplan/world/box_world.hpp"
+#include "hpcplan/world/path_shortcut.hpp"
+#include "hpcplan/world/sphere_world.hpp"
+
+namespace hpcplan::plan {
+
+const std::vector<std::string>& world_algorithms() {
+  static const std::vector<std::string> names = {
+      "astar", "wastar",  "dijkstra", "thetastar",   "rrt",
+      "birrt", "rrtstar", "hybrid",   "hybrid_pick", "hybrid_sample"};
+  return names;
+}
+
+const std::vector<std::string>& world_ompl_planners() {
+  return sampling::world_ompl_planner_names();
+}
+
+template <class W>
+std::string path_problem(const W& world, const std::vector<world::Vec<W::kDim>>& path,
+                         const world::Vec<W::kDim>& start, const world::Vec<W::kDim>& goal) {
+  if (path.empty()) return "the path is empty";
+  if (!(path.front() == start)) return "the path does not begin exactly at the start";
+  if (!(path.back() == goal)) return "the path does not end exactly at the goal";
+  for (std::size_t i = 1; i < path.size(); ++i)
+    if (!world.segment_free(path[i - 1], path[i]))
+      return "segment " + std::to_string(i) + " of the path is in collision";
+  if (path.size() == 1 && !world.point_free(path[0]))
+    return "the path's only point is in collision";
+  return "";
+}
+
+namespace {
+
+constexpr std::uint64_t kDenseVertexLimit = std::uint64_t{1} << 26;
+
+template <class W>
+void run_grid(const W& world, const world::Vec<W::kDim>& start, const world::Vec<W::kDim>& goal,
+              const WorldPlanOptions& o, WorldPlan<W::kDim>& plan) {
+  using Grid = ContinuousGrid<W>;
+  typename Grid::Config config;
+  config.resolution = o.resolution;
+  config.seed = o.seed;
+  const bool hybrid = o.algo.starts_with("hybrid");
+  if (hybrid && o.algo != "hybrid_pick") config.samples_per_expansion = o.samples_per_expansion;
+  const Grid grid(world, start, goal, config);
+  search::Options so;
+  so.max_states = o.max_states;
+  so.time_limit_s = o.time_s > 0 && hybrid ? o.time_s : 0.0;
+  so.seed = o.seed;
+  if (o.algo == "wastar") {
+    if (!(o.weight >= 1.0)) throw InputError("--weight must be at least 1");
+    so.weight = o.weight;
+    so.reopen_closed = false;
+  }
+  if (o.algo == "hybrid" || o.algo == "hybrid_pick") so.frontier = search::Frontier::random;
+  // Lattice vertices get the dense visited array when it fits in a modest address range
+  // (pages are only faulted in where the search goes).
+  if (grid.vertex_count() <= kDenseVertexLimit) so.dense_keys = grid.vertex_count();
+  using Map = search::DenseThenHashPolicy;
+  search::Result<typename Grid::State> result;
+  if (o.algo == "dijkstra") {
+    result = search::best_first_search<Map>(grid, Grid::kStart, Grid::kGoal,
+                                            search::ZeroHeuristic{}, so);
+  } else {
+    if (o.algo == "thetastar")
+      result = search::lazy_theta_star<Map>(grid, Grid::kStart, Grid::kGoal,
+                                            EuclideanToGoal<Grid>{&grid}, so);
+    else
+      result = search::best_first_search<Map>(grid, Grid::kStart, Grid::kGoal,
+                                              LatticeToGoal<Grid>{&grid}, so);
+  }
+  plan.status = std::string(search::to_string(result.status));
+  for (auto s : result.path) plan.path.push_back(grid.point(s));
+  plan.expanded = result.counters.expanded;
+  plan.tree_size = result.counters.peak_states;
+}
+
+template <class W>
+void run_tree(const W& world, const world::Vec<W::kDim>& start, const world::Vec<W::kDim>& goal,
+              const WorldPlanOptions& o, WorldPlan<W::kDim>& plan) {
+  tree::TreeOptions to;
+  to.seed = o.seed;
+  to.time_limit_s = o.time_s;
+  to.step = o.step;
+  tree::TreeResult<W::kDim> r;
+  if (o.algo == "rrt")
+    r = tree::rrt(world, start, goal, to);
+  else if (o.algo == "birrt")
+    r = tree::rrt_connect(world, start, goal, to);
+  else if (o.algo == "rrtstar")
+    r = tree::rrt_star(world, start, goal, to);
+  else
+    r = sampling::solve_with_ompl(world, start, goal, o.algo.substr(5), o.time_s, o.seed);
+  plan.status = std::string(search::to_string(r.status));
+  plan.path = std::move(r.path);
+  plan.tree_size = r.tree_size;
+  plan.first_time_ms = r.first_time_ms;
+}
+
+}  // namespace
+
+template <class W>
+WorldPlan<W::kDim> plan_in_world(const W& world, const world::Vec<W::kDim>& start,
+                                 const world::Vec<W::kDim>& goal, const WorldPlanOptions& o) {
+  constexpr int D = W::kDim;
+  tree::check_query(world, start, goal);
+  const auto& names = world_algorithms();
+  const bool grid = o.algo == "astar" || o.algo == "wastar" || o.algo == "dijkstra" ||
+                    o.algo == "thetastar" || o.algo.starts_with("hybrid");
+  const bool known = std::find(names.begin(), names.end(), o.algo) != names.end();
+  if (o.algo.starts_with("ompl:")) {
+    const auto& ompl = world_ompl_planners();
+    if (std::find(ompl.begin(), ompl.end(), o.algo.substr(5)) == ompl.end()) {
+      std::string list;
+      for (const auto& n : ompl) list += (list.empty() ? "" : ", ") + n;
+      throw InputError("unknown OMPL planner '" + o.algo.substr(5) + "' (known: " + list + ")");
+    }
+  } else if (!known) {
+    throw InputError("unknown algorithm '" + o.algo +
+                     "' (astar, wastar, dijkstra, thetastar, rrt, birrt, rrtstar, hybrid, "
+                     "hybrid_pick, hybrid_sample, ompl:<name>)");
+  }
+  if (!(o.time_s > 0) || !std::isfinite(o.time_s)) throw InputError("--time must be positive");
+  if (o.step < 0 || !std::isfinite(o.step)) throw InputError("--step must not be negative");
+  if (o.samples_per_expansion < 1) throw InputError("--samples must be at least 1");
+
+  WorldPlan<D> plan;
+  plan.algo = o.algo;
+  const std::uint64_t checks0 = world.collision_checks();
+  Stopwatch clock;
+  if (grid)
+    run_grid(world, start, goal, o, plan);
+  else
+    run_tree(world, start, goal, o, plan);
+  plan.plan_ms = clock.milliseconds();
+  if (plan.status == "solved") {
+    plan.raw_length = world::polyline_length<D>(plan.path);
+    if (o.shortcut) plan.path = world::tighten_path(world, world::shortcut_path(world, plan.path));
+    plan.length = world::polyline_length<D>(plan.path);
+  }
+  plan.time_ms = clock.milliseconds();
+  plan.collision_checks = world.collision_checks() - checks0;
+  if (plan.status == "solved") {
+    if (const std::string why = path_problem(world, plan.path, start, goal); !why.empty())
+      throw RunError("internal error: " + o.algo + " returned a bad path: " + why);
+  } else {
+    plan.path.clear();
+  }
+  return plan;
+}
+
+template WorldPlan<3> plan_in_world(const world::BoxWorld&, const world::Vec<3>&,
+                                    const world::Vec<3>&, const WorldPlanOptions&);
+template WorldPlan<2> plan_in_world(const world::SphereWorld&, const world::Vec<2>&,
+                                    const world::Vec<2>&, const WorldPlanOptions&);
+template std::string path_problem(const world::BoxWorld&, const std::vector<world::Vec<3>>&,
+                                  const world::Vec<3>&, const world::Vec<3>&);
+template std::string path_problem(const world::SphereWorld&, const std::vector<world::Vec<2>>&,
+                                  const world::Vec<2>&, const world::Vec<2>&);
+
+}  // namespace hpcplan::plan

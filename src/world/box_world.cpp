@@ -1,0 +1,171 @@
+#include "hpcplan/world/box_world.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/world/segment_box.hpp"
+
+namespace hpcplan::world {
+
+namespace {
+
+bool overlaps(const Aabb<3>& a, const Aabb<3>& b) {
+  for (int k = 0; k < 3; ++k)
+    if (a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) return false;
+  return true;
+}
+
+void check_box(const Aabb<3>& b, const std::string& what) {
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(b.lo[k]) || !std::isfinite(b.hi[k]))
+      throw InputError(what + " has a non-finite coordinate");
+    if (b.lo[k] > b.hi[k]) throw InputError(what + " has min > max on axis " + "xyz"[k]);
+  }
+}
+
+// Volume of the union of boxes clipped to the boundary, by coordinate compression: exact for
+// any overlap pattern, and the maps have at most a few thousand blocks.
+double union_volume(const std::vector<Aabb<3>>& boxes, const Aabb<3>& bound) {
+  if (boxes.empty()) return 0.0;
+  std::array<std::vector<double>, 3> cuts;
+  for (int k = 0; k < 3; ++k) {
+    for (const auto& b : boxes) {
+      cuts[k].push_back(std::clamp(b.lo[k], bound.lo[k], bound.hi[k]));
+      cuts[k].push_back(std::clamp(b.hi[k], bound.lo[k], bound.hi[k]));
+    }
+    std::sort(cuts[k].begin(), cuts[k].end());
+    cuts[k].erase(std::unique(cuts[k].begin(), cuts[k].end()), cuts[k].end());
+  }
+  if (cuts[0].size() * cuts[1].size() * cuts[2].size() > 64'000'000) return 0.0;  // too many
+  double v = 0.0;
+  for (std::size_t i = 0; i + 1 < cuts[0].size(); ++i)
+    for (std::size_t j = 0; j + 1 < cuts[1].size(); ++j)
+      for (std::size_t l = 0; l + 1 < cuts[2].size(); ++l) {
+        const Vec<3> mid{0.5 * (cuts[0][i] + cuts[0][i + 1]), 0.5 * (cuts[1][j] + cuts[1][j + 1]),
+                         0.5 * (cuts[2][l] + cuts[2][l + 1])};
+        for (const auto& b : boxes)
+          if (b.contains(mid)) {
+            v += (cuts[0][i + 1] - cuts[0][i]) * (cuts[1][j + 1] - cuts[1][j]) *
+                 (cuts[2][l + 1] - cuts[2][l]);
+            break;
+          }
+      }
+  return v;
+}
+
+}  // namespace
+
+BoxWorld::BoxWorld(Aabb<3> boundary, std::vector<Block> blocks)
+    : boundary_(boundary), blocks_(std::move(blocks)) {
+  check_box(boundary_, "the boundary");
+  for (int k = 0; k < 3; ++k)
+    if (!(boundary_.lo[k] < boundary_.hi[k]))
+      throw InputError(std::string("the boundary is empty along axis ") + "xyz"[k]);
+  for (const Block& b : blocks_) {
+    check_box(b.box, b.line ? "the block of line " + std::to_string(b.line) : "a block");
+    boxes_.push_back(b.box);
+  }
+  // About two buckets per block along each axis of the boundary's shape, at most 64 each.
+  const double target = std::clamp(static_cast<double>(blocks_.size()) * 8.0, 1.0, 262144.0);
+  const double side = std::cbrt(boundary_.volume() / target);
+  std::size_t total = 1;
+  for (int k = 0; k < 3; ++k) {
+    const double len = boundary_.hi[k] - boundary_.lo[k];
+    buckets_[k] = std::clamp(static_cast<int>(std::ceil(len / side)), 1, 64);
+    bucket_size_[k] = len / buckets_[k];
+    total *= static_cast<std::size_t>(buckets_[k]);
+  }
+  std::vector<std::vector<std::uint32_t>> lists(total);
+  for (std::uint32_t i = 0; i < boxes_.size(); ++i) {
+    std::array<int, 3> lo, hi;
+    bool outside = false;
+    for (int k = 0; k < 3; ++k) {
+      const double a = (boxes_[i].lo[k] - boundary_.lo[k]) / bucket_size_[k];
+      const double b = (boxes_[i].hi[k] - boundary_.lo[k]) / bucket_size_[k];
+      if (b < 0 || a > buckets_[k]) outside = true;
+      // Closed overlap: a block ending exactly on a bucket face belongs to both buckets.
+      lo[k] = std::clamp(static_cast<int>(std::floor(a)) - (a == std::floor(a) ? 1 : 0), 0,
+                         buckets_[k] - 1);
+      hi[k] = std::clamp(static_cast<int>(std::floor(b)), 0, buckets_[k] - 1);
+    }
+    if (outside) continue;  // cannot touch anything inside the boundary
+    for (int x = lo[0]; x <= hi[0]; ++x)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int z = lo[2]; z <= hi[2]; ++z)
+          lists[(static_cast<std::size_t>(z) * buckets_[1] + y) * buckets_[0] + x].push_back(i);
+  }
+  bucket_start_.reserve(total + 1);
+  bucket_start_.push_back(0);
+  for (const auto& l : lists) {
+    bucket_items_.insert(bucket_items_.end(), l.begin(), l.end());
+    bucket_start_.push_back(static_cast<std::uint32_t>(bucket_items_.size()));
+  }
+  free_volume_ = boundary_.volume() - union_volume(boxes_, boundary_);
+}
+
+// Calls visit(block index) for every block that may overlap `region` (a superset; blocks
+// can repeat) until visit returns true; returns whether one did.
+template <class Visit>
+bool BoxWorld::any_candidate(const Aabb<3>& region, Visit&& visit) const {
+  std::array<int, 3> lo, hi;
+  std::size_t count = 1;
+  for (int k = 0; k < 3; ++k) {
+    const double a = (region.lo[k] - boundary_.lo[k]) / bucket_size_[k];
+    const double b = (region.hi[k] - boundary_.lo[k]) / bucket_size_[k];
+    lo[k] = std::clamp(static_cast<int>(std::floor(a)) - (a == std::floor(a) ? 1 : 0), 0,
+                       buckets_[k] - 1);
+    hi[k] = std::clamp(static_cast<int>(std::floor(b)), 0, buckets_[k] - 1);
+    count *= static_cast<std::size_t>(hi[k] - lo[k] + 1);
+  }
+  if (count > boxes_.size()) {  // a long query: scanning every block is cheaper
+    for (std::uint32_t i = 0; i < boxes_.size(); ++i)
+      if (visit(i)) return true;
+    return false;
+  }
+  for (int z = lo[2]; z <= hi[2]; ++z)
+    for (int y = lo[1]; y <= hi[1]; ++y)
+      for (int x = lo[0]; x <= hi[0]; ++x) {
+        const std::size_t b = (static_cast<std::size_t>(z) * buckets_[1] + y) * buckets_[0] + x;
+        for (std::uint32_t j = bucket_start_[b]; j < bucket_start_[b + 1]; ++j)
+          if (visit(bucket_items_[j])) return true;
+      }
+  return false;
+}
+
+bool BoxWorld::point_free(const Point& p) const {
+  ++checks_;
+  if (!boundary_.contains(p)) return false;
+  return !any_candidate(Aabb<3>{p, p}, [&](std::uint32_t i) { return boxes_[i].contains(p); });
+}
+
+bool BoxWorld::segment_free(const Point& a, const Point& b) const {
+  ++checks_;
+  // The boundary is convex: both ends inside keeps the whole segment inside.
+  if (!boundary_.contains(a) || !boundary_.contains(b)) return false;
+  Aabb<3> region;
+  for (int k = 0; k < 3; ++k) {
+    region.lo[k] = std::min(a[k], b[k]);
+    region.hi[k] = std::max(a[k], b[k]);
+  }
+  return !any_candidate(region, [&](std::uint32_t i) {
+    return overlaps(region, boxes_[i]) && segment_hits_box<3>(a, b, boxes_[i]);
+  });
+}
+
+bool BoxWorld::box_free(const Aabb<3>& box) const {
+  if (!boundary_.contains(box.lo) || !boundary_.contains(box.hi)) return false;
+  return !any_candidate(box, [&](std::uint32_t i) { return overlaps(box, boxes_[i]); });
+}
+
+std::string BoxWorld::why_not_free(const Point& p) const {
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(p[k])) return "not a finite point";
+  if (!boundary_.contains(p)) return "outside the boundary";
+  for (const Block& b : blocks_)
+    if (b.box.contains(p))
+      return b.line ? "inside the block of line " + std::to_string(b.line) : "inside a block";
+  return "";
+}
+
+}  // namespace hpcplan::world
