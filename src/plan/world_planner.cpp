@@ -67,6 +67,9 @@ void run_grid(const W& world, const world::Vec<W::kDim>& start, const world::Vec
     so.reopen_closed = false;
   }
   if (o.algo == "hybrid" || o.algo == "hybrid_pick") so.frontier = search::Frontier::random;
+  // Sampled successors differ at every expansion, so a reopened state would not regenerate
+  // (and update) the children it had: closed states stay closed in the hybrids.
+  if (hybrid) so.reopen_closed = false;
   // Lattice vertices get the dense visited array when it fits in a modest address range
   // (pages are only faulted in where the search goes).
   if (grid.vertex_count() <= kDenseVertexLimit) so.dense_keys = grid.vertex_count();
@@ -76,9 +79,14 @@ void run_grid(const W& world, const world::Vec<W::kDim>& start, const world::Vec
     result = search::best_first_search<Map>(grid, Grid::kStart, Grid::kGoal,
                                             search::ZeroHeuristic{}, so);
   } else {
+    // Any-angle paths and the hybrids' sampled edges are not lattice moves: they need the
+    // straight-line heuristic (consistent for every edge), not the lattice one.
     if (o.algo == "thetastar")
       result = search::lazy_theta_star<Map>(grid, Grid::kStart, Grid::kGoal,
                                             EuclideanToGoal<Grid>{&grid}, so);
+    else if (hybrid)
+      result = search::best_first_search<Map>(grid, Grid::kStart, Grid::kGoal,
+                                              EuclideanToGoal<Grid>{&grid}, so);
     else
       result = search::best_first_search<Map>(grid, Grid::kStart, Grid::kGoal,
                                               LatticeToGoal<Grid>{&grid}, so);

@@ -31,7 +31,7 @@ double segment_distance_squared(const Vec<2>& a, const Vec<2>& b, const Vec<2>& 
 }  // namespace
 
 SphereWorld::SphereWorld(Circle boundary, std::vector<Circle> obstacles)
-    : boundary_(boundary), obstacles_(std::move(obstacles)) {
+    : boundary_(boundary), obstacles_(std::move(obstacles)), margin_(1e-9 * boundary.radius) {
   if (!(boundary_.radius > 0)) throw InputError("the boundary radius must be positive");
   for (const Circle& c : obstacles_)
     if (c.radius < 0)
@@ -48,7 +48,7 @@ bool SphereWorld::point_free(const Point& p) const {
   ++checks_;
   if (distance_squared(p, boundary_.centre) > squared(boundary_.radius)) return false;
   for (const Circle& c : obstacles_)
-    if (distance_squared(p, c.centre) <= squared(c.radius)) return false;
+    if (distance_squared(p, c.centre) <= squared(c.radius + margin_)) return false;
   return true;
 }
 
@@ -59,7 +59,7 @@ bool SphereWorld::segment_free(const Point& a, const Point& b) const {
   if (distance_squared(a, boundary_.centre) > r2 || distance_squared(b, boundary_.centre) > r2)
     return false;
   for (const Circle& c : obstacles_)
-    if (segment_distance_squared(a, b, c.centre) <= squared(c.radius)) return false;
+    if (segment_distance_squared(a, b, c.centre) <= squared(c.radius + margin_)) return false;
   return true;
 }
 
@@ -72,7 +72,7 @@ bool SphereWorld::box_free(const Aabb<2>& box) const {
   for (const Circle& c : obstacles_) {
     const Vec<2> nearest{std::clamp(c.centre[0], box.lo[0], box.hi[0]),
                          std::clamp(c.centre[1], box.lo[1], box.hi[1])};
-    if (distance_squared(nearest, c.centre) <= squared(c.radius)) return false;
+    if (distance_squared(nearest, c.centre) <= squared(c.radius + margin_)) return false;
   }
   return true;
 }
@@ -82,7 +82,7 @@ std::string SphereWorld::why_not_free(const Point& p) const {
   if (distance_squared(p, boundary_.centre) > squared(boundary_.radius))
     return "outside the boundary";
   for (const Circle& c : obstacles_)
-    if (distance_squared(p, c.centre) <= squared(c.radius))
+    if (distance_squared(p, c.centre) <= squared(c.radius + margin_))
       return c.line ? "inside the sphere of line " + std::to_string(c.line) : "inside a sphere";
   return "";
 }

@@ -1,6 +1,7 @@
 #pragma once
 // The 2D sphere world of seed 003: circular obstacles inside a circular boundary. Free space
-// is the closed boundary disc minus the closed obstacle discs.
+// is the closed boundary disc minus the closed obstacle discs, each padded by 1e-9 times the
+// boundary radius (see kContactMargin in box_world.hpp).
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -39,6 +40,7 @@ class SphereWorld {
  private:
   Circle boundary_;
   std::vector<Circle> obstacles_;
+  double margin_;  // obstacle padding, as BoxWorld's kContactMargin
   mutable std::uint64_t checks_ = 0;
 };
 

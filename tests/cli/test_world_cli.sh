@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# hpcplan map3d / sphere2d end to end: JSON contract, exact ends, path files, and bad input
+# (exit 2, one line naming the problem), unreachable goals (exit 1), nothing half-written.
+set -euo pipefail
+BIN=$1
+MAPS=$2
+PY=/usr/bin/python3
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# Every algorithm on one map: a solved, exactly-anchored path, re-checked here independently
+# (segment by segment against the map's blocks with a dense sample).
+check_path() {  # json map
+  "$PY" - "$1" "$2" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+blocks, start, goal = [], None, None
+for line in open(sys.argv[2]):
+    w = line.split("#")[0].split()
+    if not w: continue
+    if w[0] == "block": blocks.append([float(x) for x in w[1:7]])
+    if w[0] == "start": start = [float(x) for x in w[1:4]]
+    if w[0] == "goal": goal = [float(x) for x in w[1:4]]
+assert j["status"] == "solved", j["status"]
+p = j["path"]
+assert p[0] == start and p[-1] == goal, (p[0], p[-1])
+length = 0.0
+for a, b in zip(p, p[1:]):
+    length += sum((x - y) ** 2 for x, y in zip(a, b)) ** 0.5
+    for i in range(401):
+        q = [x + (y - x) * i / 400 for x, y in zip(a, b)]
+        for bl in blocks:
+            assert not all(bl[k] <= q[k] <= bl[k + 3] for k in range(3)), (a, b, bl)
+assert abs(length - j["length"]) < 1e-6 * length, (length, j["length"])
+for key in ("algo", "time_ms", "expanded", "tree_size", "collision_checks"):
+    assert key in j, key
+PY
+}
+for algo in astar wastar dijkstra thetastar rrt birrt rrtstar ompl:rrtconnect; do
+  "$BIN" map3d --map "$MAPS/window.txt" --algo "$algo" --resolution 0.2 --time 0.5 --json >"$tmp/out.json" ||
+    fail "map3d --algo $algo failed"
+  check_path "$tmp/out.json" "$MAPS/window.txt" || fail "map3d --algo $algo returned a bad path"
+done
+"$BIN" map3d --map "$MAPS/single_box.txt" --algo thetastar --shortcut --path-out "$tmp/p.csv" --output "$tmp/o.json" >"$tmp/summary.txt"
+grep -q "status *solved" "$tmp/summary.txt" || fail "summary lacks the status row"
+head -1 "$tmp/p.csv" | grep -qx "x,y,z" || fail "path CSV header"
+[[ $(tail -1 "$tmp/p.csv") == "9,5,5.2000000000000002" ]] || fail "path CSV does not end at the goal: $(tail -1 "$tmp/p.csv")"
+"$PY" -c "import json; j=json.load(open('$tmp/o.json')); assert j['status']=='solved'"
+# Explicit start and goal override the map's.
+"$BIN" map3d --map "$MAPS/single_box.txt" --start 1,1,1 --goal 9,9,9 --json | "$PY" -c "import json,sys; j=json.load(sys.stdin); assert j['path'][0]==[1,1,1] and j['path'][-1]==[9,9,9]"
+
+# Sphere world, every planner including the seed 003 hybrids.
+for algo in astar thetastar hybrid hybrid_pick hybrid_sample rrtstar; do
+  "$BIN" sphere2d --map "$MAPS/sphere_world.txt" --algo "$algo" --time 0.3 --json >"$tmp/s.json" || fail "sphere2d $algo"
+  "$PY" -c "import json; j=json.load(open('$tmp/s.json')); assert j['status']=='solved' and j['path'][0]==[-8,0] and j['path'][-1]==[8,0.5], j['path'][:1]"
+done
+
+# Bad input: exit 2, one line, naming the problem.
+expect_bad() {  # mentions args...
+  local mentions=$1; shift
+  set +e
+  "$BIN" "$@" >"$tmp/o" 2>"$tmp/e"
+  local code=$?
+  set -e
+  [[ $code == 2 ]] || fail "expected exit 2 for: $* (got $code: $(cat "$tmp/e"))"
+  [[ $(wc -l <"$tmp/e") == 1 ]] || fail "error is not one line for: $*"
+  grep -q -- "$mentions" "$tmp/e" || fail "error for '$*' does not mention '$mentions': $(cat "$tmp/e")"
+}
+printf 'boundary 0 0 0 10 10 10\nblock 1 1 1 2 2\n' >"$tmp/bad.txt"
+expect_bad "bad.txt:2:" map3d --map "$tmp/bad.txt" --start 0,0,0 --goal 9,9,9
+printf 'boundary 0 0 0 10 10 10\r\nblock 1 1 1 2 2 oops\r\n' >"$tmp/crlf.txt"
+expect_bad "crlf.txt:2: 'oops' is not a finite number" map3d --map "$tmp/crlf.txt" --start 0,0,0 --goal 9,9,9
+expect_bad "inside the block of line" map3d --map "$MAPS/single_box.txt" --start 5,5,5
+expect_bad "goal (11, 5, 5) is outside the boundary" map3d --map "$MAPS/single_box.txt" --goal 11,5,5
+expect_bad "unknown algorithm 'dfs'" map3d --map "$MAPS/single_box.txt" --algo dfs
+expect_bad "unknown OMPL planner 'nope'" map3d --map "$MAPS/single_box.txt" --algo ompl:nope
+expect_bad "needs 3 comma-separated" map3d --map "$MAPS/single_box.txt" --start 1,2
+expect_bad "resolution" map3d --map "$MAPS/single_box.txt" --resolution -1
+expect_bad "resolution" map3d --map "$MAPS/single_box.txt" --resolution 50
+expect_bad "weight" map3d --map "$MAPS/single_box.txt" --algo wastar --weight 0.5
+expect_bad "time" map3d --map "$MAPS/single_box.txt" --algo rrt --time 0
+printf 'boundary 0 0 0 10 10 10\n' >"$tmp/empty.txt"
+expect_bad "no --start given" map3d --map "$tmp/empty.txt"
+printf 'boundary 0 0 10\nsphere 1 2\n' >"$tmp/s.txt"
+expect_bad "s.txt:2: sphere needs cx cy r" sphere2d --map "$tmp/s.txt" --start 0,0 --goal 1,1
+expect_bad "inside the sphere of line" sphere2d --map "$MAPS/sphere_world.txt" --start 0,-1
+
+# An unreachable goal: exit 1 with a one-line reason, and no path file written.
+printf 'boundary 0 0 0 10 10 10\nblock 4.99 0 0 5.01 10 10\n' >"$tmp/sealed.txt"
+for algo in astar thetastar; do
+  set +e
+  "$BIN" map3d --map "$tmp/sealed.txt" --start 1,5,5 --goal 9,5,5 --algo "$algo" --path-out "$tmp/none.csv" >/dev/null 2>"$tmp/e"
+  code=$?
+  set -e
+  [[ $code == 1 ]] || fail "unreachable goal: exit $code"
+  grep -q "found no path (no_path)" "$tmp/e" || fail "unreachable goal message: $(cat "$tmp/e")"
+  [[ ! -e "$tmp/none.csv" ]] || fail "a path file was written for an unsolved query"
+done
+set +e
+"$BIN" map3d --map "$tmp/sealed.txt" --start 1,5,5 --goal 9,5,5 --algo rrt --time 0.2 >/dev/null 2>"$tmp/e"
+code=$?
+set -e
+[[ $code == 1 ]] && grep -q "(timeout); raise --time" "$tmp/e" || fail "rrt timeout: exit $code $(cat "$tmp/e")"
+# A memory budget is a clear failure too.
+set +e
+"$BIN" map3d --map "$MAPS/maze.txt" --max-states 1000 >/dev/null 2>"$tmp/e"
+code=$?
+set -e
+[[ $code == 1 ]] && grep -q "budget_exceeded" "$tmp/e" || fail "budget: exit $code $(cat "$tmp/e")"
+echo "world cli: all checks passed"
