@@ -13,6 +13,7 @@
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/progress.hpp"
 #include "hpcplan/io/atomic_file.hpp"
+#include "hpcplan/io/path_csv.hpp"
 #include "hpcplan/plan/world_planner.hpp"
 #include "hpcplan/world/box_map_io.hpp"
 #include "hpcplan/world/sphere_world.hpp"
@@ -60,16 +61,8 @@ void sweep(const std::string& name, const Map& map, const std::vector<Config>& c
                     static_cast<unsigned long long>(p.collision_checks));
       csv += row;
       if (!paths_dir.empty() && !path_written && p.status == "solved") {
-        std::string text;
-        for (const auto& q : p.path) {
-          char buf[64];
-          for (int k = 0; k < D; ++k) {
-            std::snprintf(buf, sizeof buf, k ? ",%.12g" : "%.12g", q[k]);
-            text += buf;
-          }
-          text += "\n";
-        }
-        write_file_atomically(paths_dir + "/" + name + "__" + c.label + ".csv", text);
+        write_file_atomically(paths_dir + "/" + name + "__" + c.label + ".csv",
+                              path_csv<D>(p.path));
         path_written = true;
       }
       progress.step(name + " " + c.label);

@@ -2,6 +2,7 @@
 // seed 003 sphere world) with any of the world planners, as a summary table or JSON.
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -10,6 +11,7 @@
 #include "commands.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/io/atomic_file.hpp"
+#include "hpcplan/io/path_csv.hpp"
 #include "hpcplan/plan/world_planner.hpp"
 #include "hpcplan/world/box_map_io.hpp"
 #include "hpcplan/world/sphere_world.hpp"
@@ -90,41 +92,27 @@ std::string summary(const plan::WorldPlan<D>& p, const std::string& map) {
   return s;
 }
 
+// The query point: the option when given, else the map's own line.
 template <int D>
-std::string path_csv(const plan::WorldPlan<D>& p) {
-  std::string s = D == 3 ? "x,y,z\n" : "x,y\n";
-  char buf[128];
-  for (const auto& q : p.path) {
-    for (int k = 0; k < D; ++k) {
-      std::snprintf(buf, sizeof buf, "%s%.17g", k ? "," : "", q[k]);
-      s += buf;
-    }
-    s += "\n";
-  }
-  return s;
+world::Vec<D> query_point(const std::string& option_text,
+                          const std::optional<world::Vec<D>>& from_map, const char* option,
+                          const char* what) {
+  if (!option_text.empty()) return parse_point<D>(option_text, option);
+  if (from_map) return *from_map;
+  throw InputError(std::string("no ") + option + " given and the map has no " + what + " line");
 }
 
 template <class Map>
 int run(const WorldArgs& a, const Map& map) {
   constexpr int D = std::remove_cvref_t<decltype(map.world)>::kDim;
-  world::Vec<D> start, goal;
-  if (!a.start.empty())
-    start = parse_point<D>(a.start, "--start");
-  else if (map.start)
-    start = *map.start;
-  else
-    throw InputError("no --start given and the map has no start line");
-  if (!a.goal.empty())
-    goal = parse_point<D>(a.goal, "--goal");
-  else if (map.goal)
-    goal = *map.goal;
-  else
-    throw InputError("no --goal given and the map has no goal line");
+  const world::Vec<D> start = query_point<D>(a.start, map.start, "--start", "start");
+  const world::Vec<D> goal = query_point<D>(a.goal, map.goal, "--goal", "goal");
 
   const plan::WorldPlan<D> p = plan::plan_in_world(map.world, start, goal, a.options);
   const std::string json = to_json(p).dump() + "\n";
   if (!a.output.empty()) write_file_atomically(a.output, json);
-  if (!a.path_out.empty() && p.status == "solved") write_file_atomically(a.path_out, path_csv(p));
+  if (!a.path_out.empty() && p.status == "solved")
+    write_file_atomically(a.path_out, path_csv<D>(p.path));
   std::fputs(a.json ? json.c_str() : summary(p, a.map).c_str(), stdout);
   if (p.status != "solved") {
     std::fflush(stdout);
@@ -165,28 +153,28 @@ void add_common(CLI::App* cmd, const std::shared_ptr<WorldArgs>& args, const cha
   cmd->add_option("--output", args->output, "Also write the JSON result to this file (atomically)");
 }
 
-}  // namespace
-
-Action register_map3d_command(CLI::App& app) {
+template <class Load>
+Action register_world_command(CLI::App& app, const std::string& name, const std::string& about,
+                              const char* point, double resolution, Load load) {
   auto args = std::make_shared<WorldArgs>();
-  CLI::App* cmd = app.add_subcommand("map3d", "Plan in a 3D box map (seeds 001/004)");
-  add_common(cmd, args, "x,y,z", 0.1);
-  return [args](const Context& context) {
+  add_common(app.add_subcommand(name, about), args, point, resolution);
+  return [args, name, load](const Context& context) {
     if (context.comm && context.comm->size() > 1)
-      throw InputError("map3d runs in one process; start it without mpirun");
-    return run(*args, world::load_box_map(args->map));
+      throw InputError(name + " runs in one process; start it without mpirun");
+    return run(*args, load(args->map));
   };
 }
 
+}  // namespace
+
+Action register_map3d_command(CLI::App& app) {
+  return register_world_command(app, "map3d", "Plan in a 3D box map (seeds 001/004)", "x,y,z", 0.1,
+                                world::load_box_map);
+}
+
 Action register_sphere2d_command(CLI::App& app) {
-  auto args = std::make_shared<WorldArgs>();
-  CLI::App* cmd = app.add_subcommand("sphere2d", "Plan in a 2D sphere world (seed 003)");
-  add_common(cmd, args, "x,y", 0.25);
-  return [args](const Context& context) {
-    if (context.comm && context.comm->size() > 1)
-      throw InputError("sphere2d runs in one process; start it without mpirun");
-    return run(*args, world::load_sphere_map(args->map));
-  };
+  return register_world_command(app, "sphere2d", "Plan in a 2D sphere world (seed 003)", "x,y",
+                                0.25, world::load_sphere_map);
 }
 
 }  // namespace hpcplan::cli

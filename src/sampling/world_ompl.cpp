@@ -160,8 +160,7 @@ tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const world::Vec<W::kD
   }
   if (!r.path.empty()) {
     r.status = search::Status::solved;
-    r.length = tree::path_length<D>(r.path);
-    r.first_time_ms = -1.0;
+    r.length = world::polyline_length<D>(r.path);
   } else {
     r.status =
         status == ob::PlannerStatus::TIMEOUT || status == ob::PlannerStatus::APPROXIMATE_SOLUTION

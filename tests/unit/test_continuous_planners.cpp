@@ -141,7 +141,7 @@ TEST(TreePlanners, SolveEveryShippedMapWithValidPaths) {
       const auto c = tree::rrt_star(m.world, *m.start, *m.goal, o);
       ASSERT_EQ(c.status, search::Status::solved) << name;
       expect_valid(m.world, c.path, *m.start, *m.goal, std::string(name) + " rrtstar");
-      EXPECT_NEAR(c.length, tree::path_length<3>(c.path), 1e-9);
+      EXPECT_NEAR(c.length, world::polyline_length<3>(c.path), 1e-9);
       EXPECT_LE(c.length, c.first_length + 1e-9);  // refinement never lengthens
       // Shortcutting keeps the ends and validity and never lengthens.
       const auto s = world::tighten_path(m.world, world::shortcut_path(m.world, a.path));

@@ -108,13 +108,7 @@ class ContinuousGrid {
     if (s == kStart) return start_;
     if (s == kGoal) return goal_;
     if (s >= kFirstSample) return samples_[s - kFirstSample];
-    Point p;
-    for (int k = 0; k < D; ++k) {
-      const auto c =
-          static_cast<std::int64_t>((s / stride_[k]) % static_cast<std::uint64_t>(n_[k]));
-      p[k] = lo_[k] + static_cast<double>(c) * res_;
-    }
-    return p;
+    return vertex_point(coords(s));
   }
 
   State predecessor(State, Move m) const { return m; }
@@ -125,13 +119,11 @@ class ContinuousGrid {
   double lattice_heuristic(State s) const {
     if (s == kGoal) return 0.0;
     if (s >= kFirstSample || s == kStart) return world::distance<D>(point(s), goal_);
+    const Coords c = coords(s);
     std::array<double, D> d;
-    for (int k = 0; k < D; ++k) {
-      const auto c =
-          static_cast<std::int64_t>((s / stride_[k]) % static_cast<std::uint64_t>(n_[k]));
+    for (int k = 0; k < D; ++k)
       d[k] = static_cast<double>(
-          std::max<std::int64_t>({0, goal_near_.lo[k] - c, c - goal_near_.hi[k]}));
-    }
+          std::max<std::int64_t>({0, goal_near_.lo[k] - c[k], c[k] - goal_near_.hi[k]}));
     std::sort(d.begin(), d.end(), std::greater<>());
     double h = 0.0;
     for (int i = 0; i < D; ++i) h += (d[i] - (i + 1 < D ? d[i + 1] : 0.0)) * kRoot[i];
@@ -148,11 +140,10 @@ class ContinuousGrid {
 
   template <class Emit>
   void for_each_successor(State s, Emit&& emit) const {
-    const Point p = point(s);
-    if (s < kFirstSample) {
-      std::array<std::int64_t, D> c;
-      for (int k = 0; k < D; ++k)
-        c[k] = static_cast<std::int64_t>((s / stride_[k]) % static_cast<std::uint64_t>(n_[k]));
+    const bool on_lattice = s < kFirstSample;
+    const Coords c = on_lattice ? coords(s) : Coords{};
+    const Point p = on_lattice ? vertex_point(c) : point(s);
+    if (on_lattice) {
       for (std::size_t i = 0; i < offsets_.size(); ++i) {
         std::array<std::int64_t, D> t;
         bool inside = true;
@@ -187,6 +178,18 @@ class ContinuousGrid {
   struct Range {
     Coords lo, hi;
   };
+
+  Coords coords(State s) const {
+    Coords c;
+    for (int k = 0; k < D; ++k)
+      c[k] = static_cast<std::int64_t>((s / stride_[k]) % static_cast<std::uint64_t>(n_[k]));
+    return c;
+  }
+  Point vertex_point(const Coords& c) const {
+    Point p;
+    for (int k = 0; k < D; ++k) p[k] = lo_[k] + static_cast<double>(c[k]) * res_;
+    return p;
+  }
 
   State index(const Coords& c) const {
     State s = 0;
@@ -248,9 +251,7 @@ class ContinuousGrid {
       }
       if (state == kClear) return true;
     }
-    Point q;
-    for (int k = 0; k < D; ++k) q[k] = lo_[k] + static_cast<double>(t[k]) * res_;
-    return world_.segment_free(p, q);
+    return world_.segment_free(p, vertex_point(t));
   }
 
   template <class Emit>
@@ -262,7 +263,8 @@ class ContinuousGrid {
       Point q;
       for (int k = 0; k < D; ++k) q[k] = box.lo[k] + rng_.next_unit() * (box.hi[k] - box.lo[k]);
       const double d = world::distance<D>(p, q);
-      if (d < best && world_.point_free(q) && world_.segment_free(p, q)) best = d, chosen = q;
+      // segment_free covers q's own freedom: its end is part of the segment.
+      if (d < best && world_.segment_free(p, q)) best = d, chosen = q;
     }
     if (!std::isfinite(best)) return;
     samples_.push_back(chosen);

@@ -2,7 +2,6 @@
 // RRT (LaValle 1998) with goal bias: grow one tree from the start by steps of at most eta
 // towards uniform samples (the goal itself with probability goal_bias); stop when a new vertex
 // sees the goal within one step, and join the goal exactly.
-#include "hpcplan/tree/point_index.hpp"
 #include "hpcplan/tree/tree_common.hpp"
 
 namespace hpcplan::tree {
@@ -14,34 +13,26 @@ TreeResult<W::kDim> rrt(const W& world, const world::Vec<W::kDim>& start,
   check_query(world, start, goal);
   Stopwatch clock;
   const std::uint64_t checks0 = world.collision_checks();
-  const double step = o.step > 0 ? o.step : default_step<D>(world.bounds());
+  const double step = step_of<D>(o, world.bounds());
   TreeResult<D> r;
-  std::vector<world::Vec<D>> points;
-  std::vector<std::uint32_t> parent;
-  PointIndex<D> index(points);
-  auto add = [&](const world::Vec<D>& p, std::uint32_t from) {
-    points.push_back(p);
-    parent.push_back(from);
-    index.added(points.size() - 1);
-    return static_cast<std::uint32_t>(points.size() - 1);
-  };
-  add(start, 0);
+  Tree<D> tree;
+  tree.add_root(start);
   Sampler<D> sampler(world.bounds(), start, goal, o.seed);
   auto done = [&](search::Status status) {
     r.status = status;
-    r.tree_size = points.size();
+    r.tree_size = tree.points.size();
     r.collision_checks = world.collision_checks() - checks0;
     r.time_ms = clock.milliseconds();
     if (status == search::Status::solved) {
-      r.path = branch<D>(points, parent, static_cast<std::uint32_t>(points.size() - 1));
-      r.length = path_length<D>(r.path);
+      r.path = tree.branch(static_cast<std::uint32_t>(tree.points.size() - 1));
+      r.length = world::polyline_length<D>(r.path);
       r.first_time_ms = r.time_ms;
       r.first_length = r.length;
     }
     return r;
   };
   if (world.segment_free(start, goal)) {
-    add(goal, 0);
+    tree.add(goal, 0);
     return done(search::Status::solved);
   }
   for (;;) {
@@ -50,12 +41,12 @@ TreeResult<W::kDim> rrt(const W& world, const world::Vec<W::kDim>& start,
     if (o.max_samples && r.samples >= o.max_samples) return done(search::Status::no_path);
     ++r.samples;
     const world::Vec<D> target = sampler.unit() < o.goal_bias ? goal : sampler.uniform();
-    const auto near = static_cast<std::uint32_t>(index.nearest(target));
-    const world::Vec<D> q = steer<D>(points[near], target, step);
-    if (!world.segment_free(points[near], q)) continue;
-    const std::uint32_t added = add(q, near);
+    const auto near = static_cast<std::uint32_t>(tree.index.nearest(target));
+    const world::Vec<D> q = steer<D>(tree.points[near], target, step);
+    if (!world.segment_free(tree.points[near], q)) continue;
+    const std::uint32_t added = tree.add(q, near);
     if (world::distance<D>(q, goal) <= step && world.segment_free(q, goal)) {
-      if (!(q == goal)) add(goal, added);
+      if (!(q == goal)) tree.add(goal, added);
       return done(search::Status::solved);
     }
   }

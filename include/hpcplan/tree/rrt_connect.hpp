@@ -4,7 +4,6 @@
 // vertex until it reaches it (the trees join) or is blocked.
 #include <array>
 
-#include "hpcplan/tree/point_index.hpp"
 #include "hpcplan/tree/tree_common.hpp"
 
 namespace hpcplan::tree {
@@ -16,21 +15,10 @@ TreeResult<W::kDim> rrt_connect(const W& world, const world::Vec<W::kDim>& start
   check_query(world, start, goal);
   Stopwatch clock;
   const std::uint64_t checks0 = world.collision_checks();
-  const double step = o.step > 0 ? o.step : default_step<D>(world.bounds());
-  struct Tree {
-    std::vector<world::Vec<D>> points;
-    std::vector<std::uint32_t> parent;
-    PointIndex<D> index{points};
-    std::uint32_t add(const world::Vec<D>& p, std::uint32_t from) {
-      points.push_back(p);
-      parent.push_back(from);
-      index.added(points.size() - 1);
-      return static_cast<std::uint32_t>(points.size() - 1);
-    }
-  };
-  Tree from_start, from_goal;
-  from_start.add(start, 0);
-  from_goal.add(goal, 0);
+  const double step = step_of<D>(o, world.bounds());
+  Tree<D> from_start, from_goal;
+  from_start.add_root(start);
+  from_goal.add_root(goal);
   Sampler<D> sampler(world.bounds(), start, goal, o.seed);
   TreeResult<D> r;
   auto done = [&](search::Status status, std::uint32_t a = 0, std::uint32_t b = 0) {
@@ -38,13 +26,13 @@ TreeResult<W::kDim> rrt_connect(const W& world, const world::Vec<W::kDim>& start
     r.tree_size = from_start.points.size() + from_goal.points.size();
     r.collision_checks = world.collision_checks() - checks0;
     if (status == search::Status::solved) {
-      r.path = branch<D>(from_start.points, from_start.parent, a);
-      auto back = branch<D>(from_goal.points, from_goal.parent, b);
+      r.path = from_start.branch(a);
+      auto back = from_goal.branch(b);
       // The joining vertex may be the same point in both trees.
       std::size_t skip = r.path.back() == back.back() ? 1 : 0;
       for (auto it = back.rbegin() + static_cast<std::ptrdiff_t>(skip); it != back.rend(); ++it)
         r.path.push_back(*it);
-      r.length = path_length<D>(r.path);
+      r.length = world::polyline_length<D>(r.path);
     }
     r.time_ms = clock.milliseconds();
     if (status == search::Status::solved) r.first_time_ms = r.time_ms, r.first_length = r.length;
@@ -52,8 +40,8 @@ TreeResult<W::kDim> rrt_connect(const W& world, const world::Vec<W::kDim>& start
   };
   if (world.segment_free(start, goal)) return done(search::Status::solved, 0, 0);
 
-  Tree* a = &from_start;
-  Tree* b = &from_goal;
+  Tree<D>* a = &from_start;
+  Tree<D>* b = &from_goal;
   for (;;) {
     if ((r.samples & 255) == 0 && clock.seconds() > o.time_limit_s)
       return done(search::Status::timeout);

@@ -6,7 +6,6 @@
 // the informed ellipsoid only (Informed RRT*), which is where improvements can be.
 #include <cmath>
 
-#include "hpcplan/tree/point_index.hpp"
 #include "hpcplan/tree/tree_common.hpp"
 
 namespace hpcplan::tree {
@@ -18,23 +17,21 @@ TreeResult<W::kDim> rrt_star(const W& world, const world::Vec<W::kDim>& start,
   check_query(world, start, goal);
   Stopwatch clock;
   const std::uint64_t checks0 = world.collision_checks();
-  const double step = o.step > 0 ? o.step : default_step<D>(world.bounds());
+  const double step = step_of<D>(o, world.bounds());
   const double gamma = o.gamma_factor * 2.0 * std::pow(1.0 + 1.0 / D, 1.0 / D) *
                        std::pow(world.free_volume() / Sampler<D>::unit_ball_volume(), 1.0 / D);
 
-  std::vector<world::Vec<D>> points;
-  std::vector<std::uint32_t> parent;
-  std::vector<double> cost;
-  std::vector<std::vector<std::uint32_t>> children;
-  PointIndex<D> index(points);
+  Tree<D> tree;
+  auto& points = tree.points;
+  auto& parent = tree.parent;
+  auto& index = tree.index;
+  std::vector<double> cost;                          // per vertex: path length from the start
+  std::vector<std::vector<std::uint32_t>> children;  // to pass cost savings down a subtree
   auto add = [&](const world::Vec<D>& p, std::uint32_t from, double c) {
-    points.push_back(p);
-    parent.push_back(from);
+    const std::uint32_t i = tree.add(p, from);
     cost.push_back(c);
     children.emplace_back();
-    const auto i = static_cast<std::uint32_t>(points.size() - 1);
     if (i != from) children[from].push_back(i);
-    index.added(i);
     return i;
   };
   // Moves vertex v under new parent p and lowers the cost of its whole subtree by the saving.
@@ -112,8 +109,8 @@ TreeResult<W::kDim> rrt_star(const W& world, const world::Vec<W::kDim>& start,
   }
   if (solved()) {
     status = search::Status::solved;
-    r.path = branch<D>(points, parent, goal_vertex);
-    r.length = path_length<D>(r.path);
+    r.path = tree.branch(goal_vertex);
+    r.length = world::polyline_length<D>(r.path);
     if (r.first_time_ms < 0) r.first_time_ms = clock.milliseconds(), r.first_length = r.length;
   }
   r.status = status;

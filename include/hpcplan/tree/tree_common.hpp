@@ -13,6 +13,7 @@
 #include "hpcplan/core/splitmix64.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/search/search_result.hpp"
+#include "hpcplan/tree/point_index.hpp"
 #include "hpcplan/world/point.hpp"
 
 namespace hpcplan::tree {
@@ -129,24 +130,42 @@ world::Vec<D> steer(const world::Vec<D>& from, const world::Vec<D>& to, double s
   return d <= step ? to : world::lerp<D>(from, to, step / d);
 }
 
-// Walks parent links from `leaf` to the root; returns root..leaf.
+// A tree of points with parent links (the root is its own parent) and a KD-tree over them.
 template <int D>
-std::vector<world::Vec<D>> branch(const std::vector<world::Vec<D>>& points,
-                                  const std::vector<std::uint32_t>& parent, std::uint32_t leaf) {
-  std::vector<world::Vec<D>> path;
-  for (std::uint32_t i = leaf;; i = parent[i]) {
-    path.push_back(points[i]);
-    if (parent[i] == i) break;
-  }
-  std::reverse(path.begin(), path.end());
-  return path;
-}
+struct Tree {
+  std::vector<world::Vec<D>> points;
+  std::vector<std::uint32_t> parent;
+  PointIndex<D> index{points};
 
+  Tree() = default;
+  Tree(const Tree&) = delete;  // the index refers to `points`
+  Tree& operator=(const Tree&) = delete;
+
+  std::uint32_t add(const world::Vec<D>& p, std::uint32_t from) {
+    points.push_back(p);
+    parent.push_back(from);
+    index.added(points.size() - 1);
+    return static_cast<std::uint32_t>(points.size() - 1);
+  }
+  std::uint32_t add_root(const world::Vec<D>& p) {
+    return add(p, static_cast<std::uint32_t>(points.size()));
+  }
+  // root..leaf
+  std::vector<world::Vec<D>> branch(std::uint32_t leaf) const {
+    std::vector<world::Vec<D>> path;
+    for (std::uint32_t i = leaf;; i = parent[i]) {
+      path.push_back(points[i]);
+      if (parent[i] == i) break;
+    }
+    std::reverse(path.begin(), path.end());
+    return path;
+  }
+};
+
+// The steering distance eta the options ask for.
 template <int D>
-double path_length(const std::vector<world::Vec<D>>& path) {
-  double l = 0.0;
-  for (std::size_t i = 1; i < path.size(); ++i) l += world::distance<D>(path[i - 1], path[i]);
-  return l;
+double step_of(const TreeOptions& o, const world::Aabb<D>& box) {
+  return o.step > 0 ? o.step : default_step<D>(box);
 }
 
 template <class W>

@@ -15,13 +15,6 @@
 
 namespace hpcplan::world {
 
-template <int D>
-double polyline_length(const std::vector<Vec<D>>& path) {
-  double l = 0.0;
-  for (std::size_t i = 1; i < path.size(); ++i) l += distance<D>(path[i - 1], path[i]);
-  return l;
-}
-
 template <class W>
 std::vector<Vec<W::kDim>> shortcut_path(const W& world, const std::vector<Vec<W::kDim>>& path) {
   if (path.size() <= 2) return path;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace hpcplan::world {
 
@@ -26,6 +27,13 @@ Vec<D> lerp(const Vec<D>& a, const Vec<D>& b, double t) {
   Vec<D> p;
   for (int k = 0; k < D; ++k) p[k] = a[k] + t * (b[k] - a[k]);
   return p;
+}
+
+template <int D>
+double polyline_length(const std::vector<Vec<D>>& path) {
+  double l = 0.0;
+  for (std::size_t i = 1; i < path.size(); ++i) l += distance<D>(path[i - 1], path[i]);
+  return l;
 }
 
 template <int D>
