@@ -1,6 +1,7 @@
 // Every planner on every world file, repeated: one CSV row per run (time, length, work), and
 // optionally each configuration's first solved path as CSV for the figures. Configurations are
-// "algo[@resolution][+shortcut]", e.g. astar@0.1, thetastar@0.25+shortcut, rrtstar+shortcut.
+// "algo[@resolution][+shortcut]", e.g. astar@0.1, thetastar@0.25+shortcut, rrtstar+shortcut;
+// for visgraph the number is the bend spacing (visgraph@0.25+shortcut).
 //   hpcplan_world_sweep --kind map3d --maps bench/maps/maze.txt ... --configs astar@0.1,rrt
 //       --runs 5 --time 1 --out results/map3d/sweep.csv --paths results/map3d/paths
 #include <CLI/CLI.hpp>
@@ -35,7 +36,9 @@ Config parse_config(const std::string& text, const plan::WorldPlanOptions& base)
     s.erase(plus);
   }
   if (const auto at = s.find('@'); at != std::string::npos) {
-    c.options.resolution = std::stod(s.substr(at + 1));
+    // The grid searches' cell size, or the visibility graph's bend spacing.
+    (s.starts_with("visgraph") ? c.options.spacing : c.options.resolution) =
+        std::stod(s.substr(at + 1));
     s.erase(at);
   }
   c.options.algo = s;

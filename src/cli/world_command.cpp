@@ -118,7 +118,9 @@ int run(const WorldArgs& a, const Map& map) {
     std::fflush(stdout);
     std::fprintf(stderr, "hpcplan: error: %s found no path (%s)%s\n", p.algo.c_str(),
                  p.status.c_str(),
-                 p.status == "timeout" ? "; raise --time" : "; try a finer --resolution");
+                 p.status == "timeout"  ? "; raise --time"
+                 : p.algo == "visgraph" ? "; try a finer --spacing"
+                                        : "; try a finer --resolution");
     return kExitRunFailure;
   }
   return kExitOk;
@@ -132,10 +134,14 @@ void add_common(CLI::App* cmd, const std::shared_ptr<WorldArgs>& args, const cha
   cmd->add_option("--start", args->start, std::string("Start ") + point + " (default: the map's)");
   cmd->add_option("--goal", args->goal, std::string("Goal ") + point + " (default: the map's)");
   cmd->add_option("--algo", o.algo,
-                  "astar|wastar|dijkstra|thetastar|rrt|birrt|rrtstar|hybrid|hybrid_pick|"
-                  "hybrid_sample|ompl:<name>")
+                  "astar|wastar|dijkstra|thetastar|visgraph|rrt|birrt|rrtstar|hybrid|"
+                  "hybrid_pick|hybrid_sample|ompl:<name>")
       ->capture_default_str();
   cmd->add_option("--resolution", o.resolution, "Grid spacing of the searches")
+      ->capture_default_str();
+  cmd->add_option("--spacing", o.spacing,
+                  "visgraph: bend points this far apart along obstacle edges (0 = a 40th of the "
+                  "world's largest side)")
       ->capture_default_str();
   cmd->add_option("--weight", o.weight, "Heuristic weight of wastar (>= 1)")->capture_default_str();
   cmd->add_option("--seed", o.seed, "Random seed")->capture_default_str();

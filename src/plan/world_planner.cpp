@@ -5,6 +5,7 @@
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/graph/continuous_grid.hpp"
+#include "hpcplan/graph/visibility_graph.hpp"
 #include "hpcplan/sampling/world_ompl.hpp"
 #include "hpcplan/search/best_first.hpp"
 #include "hpcplan/search/dense_visited_map.hpp"
@@ -12,6 +13,7 @@
 #include "hpcplan/tree/rrt.hpp"
 #include "hpcplan/tree/rrt_connect.hpp"
 #include "hpcplan/tree/rrt_star.hpp"
+#include "hpcplan/world/bend_points.hpp"
 #include "hpcplan/world/box_world.hpp"
 #include "hpcplan/world/path_shortcut.hpp"
 #include "hpcplan/world/sphere_world.hpp"
@@ -20,8 +22,8 @@ namespace hpcplan::plan {
 
 const std::vector<std::string>& world_algorithms() {
   static const std::vector<std::string> names = {
-      "astar", "wastar",  "dijkstra", "thetastar",   "rrt",
-      "birrt", "rrtstar", "hybrid",   "hybrid_pick", "hybrid_sample"};
+      "astar",   "wastar", "dijkstra",    "thetastar",     "rrt",     "birrt",
+      "rrtstar", "hybrid", "hybrid_pick", "hybrid_sample", "visgraph"};
   return names;
 }
 
@@ -46,6 +48,7 @@ std::string path_problem(const W& world, const std::vector<world::Vec<W::kDim>>&
 namespace {
 
 constexpr std::uint64_t kDenseVertexLimit = std::uint64_t{1} << 26;
+constexpr double kDefaultSpacing = 1.0 / 40;  // visgraph: bend spacing per world extent
 
 template <class W>
 void run_grid(const W& world, const world::Vec<W::kDim>& start, const world::Vec<W::kDim>& goal,
@@ -98,6 +101,35 @@ void run_grid(const W& world, const world::Vec<W::kDim>& start, const world::Vec
 }
 
 template <class W>
+double largest_extent(const W& world) {
+  const auto box = world.bounds();
+  double extent = 0.0;
+  for (int k = 0; k < W::kDim; ++k) extent = std::max(extent, box.hi[k] - box.lo[k]);
+  return extent;
+}
+
+template <class W>
+void run_visibility(const W& world, const world::Vec<W::kDim>& start,
+                    const world::Vec<W::kDim>& goal, const WorldPlanOptions& o,
+                    WorldPlan<W::kDim>& plan) {
+  using Graph = VisibilityGraph<W>;
+  const double extent = largest_extent(world);
+  const double spacing = o.spacing > 0 ? o.spacing : extent * kDefaultSpacing;
+  // Bends sit a millionth of the world off the obstacles: far outside the contact margin, far
+  // below any length that matters.
+  const Graph graph(world, start, goal, world::bend_points(world, spacing, 1e-6 * extent));
+  search::Options so;
+  so.max_states = o.max_states;
+  so.dense_keys = graph.vertex_count();
+  const auto result = search::best_first_search<search::DenseThenHashPolicy>(
+      graph, Graph::kStart, Graph::kGoal, EuclideanToGoal<Graph>{&graph}, so);
+  plan.status = std::string(search::to_string(result.status));
+  for (auto s : result.path) plan.path.push_back(graph.point(s));
+  plan.expanded = result.counters.expanded;
+  plan.tree_size = graph.vertex_count();
+}
+
+template <class W>
 void run_tree(const W& world, const world::Vec<W::kDim>& start, const world::Vec<W::kDim>& goal,
               const WorldPlanOptions& o, WorldPlan<W::kDim>& plan) {
   tree::TreeOptions to;
@@ -139,8 +171,8 @@ WorldPlan<W::kDim> plan_in_world(const W& world, const world::Vec<W::kDim>& star
     }
   } else if (!known) {
     throw InputError("unknown algorithm '" + o.algo +
-                     "' (astar, wastar, dijkstra, thetastar, rrt, birrt, rrtstar, hybrid, "
-                     "hybrid_pick, hybrid_sample, ompl:<name>)");
+                     "' (astar, wastar, dijkstra, thetastar, visgraph, rrt, birrt, rrtstar, "
+                     "hybrid, hybrid_pick, hybrid_sample, ompl:<name>)");
   }
   if (!(o.time_s > 0) || !std::isfinite(o.time_s)) throw InputError("--time must be positive");
   if (o.step < 0 || !std::isfinite(o.step)) throw InputError("--step must not be negative");
@@ -150,8 +182,12 @@ WorldPlan<W::kDim> plan_in_world(const W& world, const world::Vec<W::kDim>& star
   plan.algo = o.algo;
   const std::uint64_t checks0 = world.collision_checks();
   Stopwatch clock;
+  if (o.spacing < 0 || !std::isfinite(o.spacing))
+    throw InputError("--spacing must be a positive number");
   if (grid)
     run_grid(world, start, goal, o, plan);
+  else if (o.algo == "visgraph")
+    run_visibility(world, start, goal, o, plan);
   else
     run_tree(world, start, goal, o, plan);
   plan.plan_ms = clock.milliseconds();

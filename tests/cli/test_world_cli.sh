@@ -37,7 +37,7 @@ for key in ("algo", "time_ms", "expanded", "tree_size", "collision_checks"):
     assert key in j, key
 PY
 }
-for algo in astar wastar dijkstra thetastar rrt birrt rrtstar ompl:rrtconnect; do
+for algo in astar wastar dijkstra thetastar visgraph rrt birrt rrtstar ompl:rrtconnect; do
   "$BIN" map3d --map "$MAPS/window.txt" --algo "$algo" --resolution 0.2 --time 0.5 --json >"$tmp/out.json" ||
     fail "map3d --algo $algo failed"
   check_path "$tmp/out.json" "$MAPS/window.txt" || fail "map3d --algo $algo returned a bad path"
@@ -51,7 +51,7 @@ head -1 "$tmp/p.csv" | grep -qx "x,y,z" || fail "path CSV header"
 "$BIN" map3d --map "$MAPS/single_box.txt" --start 1,1,1 --goal 9,9,9 --json | "$PY" -c "import json,sys; j=json.load(sys.stdin); assert j['path'][0]==[1,1,1] and j['path'][-1]==[9,9,9]"
 
 # Sphere world, every planner including the seed 003 hybrids.
-for algo in astar thetastar hybrid hybrid_pick hybrid_sample rrtstar; do
+for algo in astar thetastar visgraph hybrid hybrid_pick hybrid_sample rrtstar; do
   "$BIN" sphere2d --map "$MAPS/sphere_world.txt" --algo "$algo" --time 0.3 --json >"$tmp/s.json" || fail "sphere2d $algo"
   "$PY" -c "import json; j=json.load(open('$tmp/s.json')); assert j['status']=='solved' and j['path'][0]==[-8,0] and j['path'][-1]==[8,0.5], j['path'][:1]"
 done
@@ -80,6 +80,8 @@ expect_bad "resolution" map3d --map "$MAPS/single_box.txt" --resolution -1
 expect_bad "resolution" map3d --map "$MAPS/single_box.txt" --resolution 50
 expect_bad "weight" map3d --map "$MAPS/single_box.txt" --algo wastar --weight 0.5
 expect_bad "time" map3d --map "$MAPS/single_box.txt" --algo rrt --time 0
+expect_bad "spacing" map3d --map "$MAPS/single_box.txt" --algo visgraph --spacing -0.5
+expect_bad "use a coarser --spacing" map3d --map "$MAPS/maze.txt" --algo visgraph --spacing 1e-7
 printf 'boundary 0 0 0 10 10 10\n' >"$tmp/empty.txt"
 expect_bad "no --start given" map3d --map "$tmp/empty.txt"
 printf 'boundary 0 0 10\nsphere 1 2\n' >"$tmp/s.txt"
@@ -88,7 +90,7 @@ expect_bad "inside the sphere of line" sphere2d --map "$MAPS/sphere_world.txt" -
 
 # An unreachable goal: exit 1 with a one-line reason, and no path file written.
 printf 'boundary 0 0 0 10 10 10\nblock 4.99 0 0 5.01 10 10\n' >"$tmp/sealed.txt"
-for algo in astar thetastar; do
+for algo in astar thetastar visgraph; do
   set +e
   "$BIN" map3d --map "$tmp/sealed.txt" --start 1,5,5 --goal 9,5,5 --algo "$algo" --path-out "$tmp/none.csv" >/dev/null 2>"$tmp/e"
   code=$?

@@ -14,11 +14,12 @@
 namespace hpcplan::plan {
 
 struct WorldPlanOptions {
-  // astar, wastar, dijkstra, thetastar, rrt, birrt, rrtstar, hybrid, hybrid_pick,
+  // astar, wastar, dijkstra, thetastar, visgraph, rrt, birrt, rrtstar, hybrid, hybrid_pick,
   // hybrid_sample, ompl:<name>
   std::string algo = "astar";
   double resolution = 0.1;  // grid searches
   double weight = 2.0;      // wastar
+  double spacing = 0.0;     // visgraph: bend points this far apart; 0 = a 40th of the world
   std::uint64_t seed = 1;
   double time_s = 1.0;             // tree planners: RRT* refines until then; others stop at a path
   double step = 0.0;               // tree planners' eta; 0 = a twentieth of the largest extent

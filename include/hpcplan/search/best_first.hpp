@@ -46,6 +46,15 @@ Result<typename G::State>& complete_result(Result<typename G::State>& result, co
   return result;
 }
 
+// Graphs with costly edge tests (the visibility graph) take a second callback and test an
+// edge only when the store says offering it could change something.
+template <class G>
+concept FiltersSuccessors = requires(const G& g, const typename G::State& s) {
+  g.for_each_successor(
+      s, [](const typename G::State&, typename G::Cost, typename G::Move) {},
+      [](const typename G::State&, typename G::Cost) { return true; });
+};
+
 template <class MapPolicy = DefaultVisitedMap, SearchGraph G, class Heuristic>
 Result<typename G::State> best_first_search(const G& graph, const typename G::State& start,
                                             const typename G::State& goal, const Heuristic& h,
@@ -80,7 +89,7 @@ Result<typename G::State> best_first_search(const G& graph, const typename G::St
 
     bool goal_generated = false;
     bool over_budget = false;
-    graph.for_each_successor(x, [&](const State& t, const Cost& cost, typename G::Move m) {
+    auto emit = [&](const State& t, const Cost& cost, typename G::Move m) {
       ++counters.generated;
       if (goal_generated || over_budget) return;
       // BFS stores the real cost too (never compared): it orders by hops through the FIFO.
@@ -89,7 +98,13 @@ Result<typename G::State> best_first_search(const G& graph, const typename G::St
         over_budget = true;
       else if (is_fifo && offered == Store::Offered::pushed && t == goal)
         goal_generated = true;
-    });
+    };
+    if constexpr (FiltersSuccessors<G>)
+      graph.for_each_successor(x, emit, [&](const State& t, const Cost& cost) {
+        return store.could_improve(t, gx + cost);
+      });
+    else
+      graph.for_each_successor(x, emit);
     if (goal_generated) return finish(Status::solved, true);
     if (over_budget) return finish(Status::budget_exceeded, false);
   }

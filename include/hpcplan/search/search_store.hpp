@@ -120,6 +120,16 @@ class SearchStore {
     return Offered::pushed;
   }
 
+  // Whether offer(t, g, ...) would store or improve t: lets a graph skip testing edges that
+  // cannot matter.
+  bool could_improve(const State& t, const Cost& g) const {
+    auto it = visited_.find(t);
+    if (it == visited_.end()) return true;
+    const Node& node = it->second;
+    if (fifo_ || cost_value(g) + kImprovementEpsilon >= cost_value(node.g)) return false;
+    return !node.closed || reopen_;
+  }
+
   // Takes the next state to expand off the open list and marks it closed; skips stale heap
   // duplicates. `f` receives its priority (its g for BFS). False when the open list is empty.
   bool pop(State& x, Cost& g, double& f) {
