@@ -24,6 +24,11 @@ def fmt(x, digits=3):
     return f"{x:.{digits}f}"
 
 
+def ms(x):
+    """Milliseconds: two decimals below 10 ms, so sub-millisecond plans do not read as 0."""
+    return f"{x:.2f}" if x < 10 else f"{x:.1f}"
+
+
 def load(path):
     groups = defaultdict(list)
     for r in csv.DictReader(open(path)):
@@ -59,13 +64,13 @@ def map3d(sweep, reference):
                 lengths = [float(r["length"]) for r in ok]
                 L = st.median(lengths)
                 work = st.median([int(r["expanded"]) or int(r["tree_size"]) for r in ok])
-                print(f"| {c} | {len(ok)}/{len(rows)} | {fmt(t[1], 1)} [{fmt(t[0], 1)}, {fmt(t[2], 1)}] | "
+                print(f"| {c} | {len(ok)}/{len(rows)} | {ms(t[1])} [{ms(t[0])}, {ms(t[2])}] | "
                       f"{fmt(L, 4)} | {fmt(L / stand_in, 4)} | {fmt(L / best, 4)} | {int(work)} |")
                 # The target is judged against the best known length, the stricter reference.
                 if len(ok) == len(rows) and max(lengths) <= 1.01 * best and t[1] <= 100:
                     fast_within.append((t[1], c, L / best))
             else:
-                print(f"| {c} | 0/{len(rows)} | {fmt(t[1], 1)} | – | – | – | – |")
+                print(f"| {c} | 0/{len(rows)} | {ms(t[1])} | – | – | – | – |")
         astar = [float(r["time_ms"]) for r in groups.get((m, "astar@0.1"), [])]
         targets.append((m, min(fast_within) if fast_within else None, st.median(astar) if astar else None))
     print("\n**Targets** (every run within 1% of the best known length, median ≤ 100 ms; "
@@ -73,8 +78,8 @@ def map3d(sweep, reference):
     print("| map | fastest planner within 1% | its median ms | / best known | A*@0.1 median ms |")
     print("|---|---|---|---|---|")
     for m, fast, a in targets:
-        f = f"{fast[1]} | {fmt(fast[0], 1)} | {fmt(fast[2], 4)}" if fast else "none | – | –"
-        print(f"| {m} | {f} | {fmt(a, 1) if a is not None else '–'} |")
+        f = f"{fast[1]} | {ms(fast[0])} | {fmt(fast[2], 4)}" if fast else "none | – | –"
+        print(f"| {m} | {f} | {ms(a) if a is not None else '–'} |")
 
 
 def sphere(sweep, plot=None):
