@@ -101,19 +101,11 @@ void run_grid(const W& world, const world::Vec<W::kDim>& start, const world::Vec
 }
 
 template <class W>
-double largest_extent(const W& world) {
-  const auto box = world.bounds();
-  double extent = 0.0;
-  for (int k = 0; k < W::kDim; ++k) extent = std::max(extent, box.hi[k] - box.lo[k]);
-  return extent;
-}
-
-template <class W>
 void run_visibility(const W& world, const world::Vec<W::kDim>& start,
                     const world::Vec<W::kDim>& goal, const WorldPlanOptions& o,
                     WorldPlan<W::kDim>& plan) {
   using Graph = VisibilityGraph<W>;
-  const double extent = largest_extent(world);
+  const double extent = world.bounds().largest_side();
   const double spacing = o.spacing > 0 ? o.spacing : extent * kDefaultSpacing;
   // Bends sit a millionth of the world off the obstacles: far outside the contact margin, far
   // below any length that matters.

@@ -41,10 +41,12 @@ Vec<3> axis(int k, double sign) {
 
 std::vector<BendPoint<3>> bend_points(const BoxWorld& world, double spacing, double lift) {
   check_spacing(spacing, lift);
-  double count = 0;
-  for (const Block& block : world.blocks())
+  double count = 0;  // an upper bound: 8 corners and 4 edges' samples along each axis
+  for (const Block& block : world.blocks()) {
+    count += 8;
     for (int a = 0; a < 3; ++a)
-      count += 4 * std::ceil((block.box.hi[a] - block.box.lo[a]) / spacing) + 8.0 / 3;
+      count += 4 * std::ceil((block.box.hi[a] - block.box.lo[a]) / spacing);
+  }
   check_count(count, spacing);
   std::vector<BendPoint<3>> out;
   auto keep = [&](const BendPoint<3>& b) {

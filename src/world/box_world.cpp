@@ -33,9 +33,7 @@ BoxWorld::BoxWorld(Aabb<3> boundary, std::vector<Block> blocks)
   for (int k = 0; k < 3; ++k)
     if (!(boundary_.lo[k] < boundary_.hi[k]))
       throw InputError(std::string("the boundary is empty along axis ") + "xyz"[k]);
-  double size = 0.0;
-  for (int k = 0; k < 3; ++k) size = std::max(size, boundary_.hi[k] - boundary_.lo[k]);
-  const double margin = kContactMargin * size;
+  const double margin = kContactMargin * boundary_.largest_side();
   for (const Block& b : blocks_) {
     check_box(b.box, b.line ? "the block of line " + std::to_string(b.line) : "a block");
     Aabb<3> padded = b.box;

@@ -18,30 +18,18 @@
 #include "hpcplan/world/box_map_io.hpp"
 #include "hpcplan/world/path_shortcut.hpp"
 #include "hpcplan/world/sphere_world.hpp"
+#include "support/path_checks.hpp"
 
 namespace hpcplan {
 namespace {
 
+using test_support::expect_valid;
 using world::BoxWorld;
 using world::Vec;
 using VisBox = VisibilityGraph<BoxWorld>;
 
 world::BoxMap shipped(const std::string& name) {
   return world::load_box_map(std::string(HPCPLAN_MAPS_DIR) + "/" + name + ".txt");
-}
-
-template <class W>
-void expect_valid(const W& w, const std::vector<Vec<W::kDim>>& path, const Vec<W::kDim>& start,
-                  const Vec<W::kDim>& goal, const std::string& what) {
-  ASSERT_FALSE(path.empty()) << what;
-  EXPECT_EQ(path.front(), start) << what;
-  EXPECT_EQ(path.back(), goal) << what;
-  for (std::size_t i = 1; i < path.size(); ++i) {
-    ASSERT_TRUE(w.segment_free(path[i - 1], path[i])) << what << " segment " << i;
-    for (int s = 0; s <= 50; ++s)
-      ASSERT_TRUE(w.point_free(world::lerp<W::kDim>(path[i - 1], path[i], s / 50.0)))
-          << what << " segment " << i << " at " << s;
-  }
 }
 
 // The same graph with only the two-argument successor walk: the engine cannot filter edges
@@ -68,6 +56,15 @@ std::vector<Vec<G::D>> points(const G& g, const std::vector<typename G::State>& 
   std::vector<Vec<G::D>> out;
   for (auto s : states) out.push_back(g.point(s));
   return out;
+}
+
+// A* with the straight-line heuristic on a visibility graph, as the planner runs it.
+template <class G>
+search::Result<typename G::State> shortest(const G& g) {
+  search::Options o;
+  o.dense_keys = g.vertex_count();
+  return search::best_first_search<search::DenseThenHashPolicy>(g, G::kStart, G::kGoal,
+                                                                EuclideanToGoal<G>{&g}, o);
 }
 
 TEST(BendPoints, CornersAndEdgeSamplesLiftedOffOneBox) {
@@ -125,10 +122,7 @@ TEST(VisibilityGraph, FilteredAStarEqualsUnfilteredDijkstraOnShippedMaps) {
   for (const char* name : {"single_box", "maze", "thin_walls", "tower", "window"}) {
     const auto m = shipped(name);
     const VisBox g(m.world, *m.start, *m.goal, world::bend_points(m.world, 0.5, 1e-5));
-    search::Options o;
-    o.dense_keys = g.vertex_count();
-    const auto astar = search::best_first_search<search::DenseThenHashPolicy>(
-        g, VisBox::kStart, VisBox::kGoal, EuclideanToGoal<VisBox>{&g}, o);
+    const auto astar = shortest(g);
     const Unfiltered<VisBox> plain{g};
     const auto dijkstra = search::best_first_search(plain, VisBox::kStart, VisBox::kGoal,
                                                     search::ZeroHeuristic{}, {});
@@ -156,8 +150,7 @@ TEST(VisibilityGraph, TightenedPathMatchesTheUnfoldedOptimumAroundAWall) {
   const WallCase c;
   for (double spacing : {2.0, 0.7, 0.25}) {
     const VisBox g(c.world, c.start, c.goal, world::bend_points(c.world, spacing, 1e-6));
-    const auto r = search::best_first_search<search::DenseThenHashPolicy>(
-        g, VisBox::kStart, VisBox::kGoal, EuclideanToGoal<VisBox>{&g}, {});
+    const auto r = shortest(g);
     ASSERT_EQ(r.status, search::Status::solved) << spacing;
     const auto raw = points(g, r.path);
     expect_valid(c.world, raw, c.start, c.goal, "raw");
@@ -195,8 +188,7 @@ TEST(VisibilityGraph, TightenedPathMatchesTangentsAndArcAroundADisc) {
   using VisDisc = VisibilityGraph<world::SphereWorld>;
   for (double spacing : {0.5, 0.1}) {
     const VisDisc g(w, start, goal, world::bend_points(w, spacing, 1e-6));
-    const auto r = search::best_first_search<search::DenseThenHashPolicy>(
-        g, VisDisc::kStart, VisDisc::kGoal, EuclideanToGoal<VisDisc>{&g}, {});
+    const auto r = shortest(g);
     ASSERT_EQ(r.status, search::Status::solved);
     EXPECT_GE(r.cost, optimum - 1e-9);
     EXPECT_LE(r.cost, optimum * 1.01) << spacing;
@@ -211,8 +203,7 @@ TEST(VisibilityGraph, TightenedPathMatchesTangentsAndArcAroundADisc) {
 TEST(VisibilityGraph, SealedGoalHasNoPathAndBadSpacingIsRejected) {
   const BoxWorld sealed({{0, 0, 0}, {10, 10, 10}}, {world::Block{{{4.99, 0, 0}, {5.01, 10, 10}}}});
   const VisBox g(sealed, {1, 5, 5}, {9, 5, 5}, world::bend_points(sealed, 0.5, 1e-6));
-  const auto r = search::best_first_search<search::DenseThenHashPolicy>(
-      g, VisBox::kStart, VisBox::kGoal, EuclideanToGoal<VisBox>{&g}, {});
+  const auto r = shortest(g);
   EXPECT_EQ(r.status, search::Status::no_path);
   EXPECT_TRUE(r.path.empty());
   EXPECT_THROW(world::bend_points(sealed, -1.0, 1e-6), InputError);
@@ -227,11 +218,9 @@ TEST(VisibilityGraph, NoLongerThanTightenedThetaStarOnShippedMaps) {
   for (const char* name : {"single_box", "maze", "thin_walls", "tower", "window", "forest"}) {
     const auto m = shipped(name);
     const VisBox g(m.world, *m.start, *m.goal, world::bend_points(m.world, 0.5, 1e-5));
-    search::Options o;
-    o.dense_keys = g.vertex_count();
-    const auto vis = search::best_first_search<search::DenseThenHashPolicy>(
-        g, VisBox::kStart, VisBox::kGoal, EuclideanToGoal<VisBox>{&g}, o);
+    const auto vis = shortest(g);
     const Grid3 grid(m.world, *m.start, *m.goal, {0.25});
+    search::Options o;
     o.dense_keys = grid.vertex_count();
     const auto theta = search::lazy_theta_star<search::DenseThenHashPolicy>(
         grid, Grid3::kStart, Grid3::kGoal, EuclideanToGoal<Grid3>{&grid}, o);

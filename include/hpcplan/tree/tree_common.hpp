@@ -44,9 +44,7 @@ struct TreeResult {
 
 template <int D>
 double default_step(const world::Aabb<D>& box) {
-  double m = 0.0;
-  for (int k = 0; k < D; ++k) m = std::max(m, box.hi[k] - box.lo[k]);
-  return m / 20.0;
+  return box.largest_side() / 20.0;
 }
 
 // Uniform samples of the world's box, or of the prolate ellipsoid {x : |x-a| + |x-b| <= c}

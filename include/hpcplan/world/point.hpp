@@ -1,6 +1,7 @@
 #pragma once
 // Points of the continuous worlds (2D sphere world, 3D box maps) and the little vector algebra
 // the planners need; a world is any type with kDim, bounds, point_free and segment_free.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <concepts>
@@ -44,6 +45,11 @@ struct Aabb {
     for (int k = 0; k < D; ++k)
       if (p[k] < lo[k] || p[k] > hi[k]) return false;
     return true;
+  }
+  double largest_side() const {
+    double m = 0.0;
+    for (int k = 0; k < D; ++k) m = std::max(m, hi[k] - lo[k]);
+    return m;
   }
   double volume() const {
     double v = 1.0;
