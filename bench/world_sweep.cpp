@@ -57,13 +57,13 @@ void sweep(const std::string& name, const Map& map, const std::vector<Config>& c
       const plan::WorldPlan<D> p = plan::plan_in_world(map.world, *map.start, *map.goal, o);
       char row[512];
       std::snprintf(row, sizeof row, "%s,%s,%d,%s,%.9f,%.9f,%.4f,%.4f,%.4f,%llu,%llu,%llu\n",
-                    name.c_str(), c.label.c_str(), run + 1, p.status.c_str(), p.length,
-                    p.raw_length, p.time_ms, p.plan_ms, p.first_time_ms,
-                    static_cast<unsigned long long>(p.expanded),
+                    name.c_str(), c.label.c_str(), run + 1,
+                    std::string(to_string(p.status)).c_str(), p.length, p.raw_length, p.time_ms,
+                    p.plan_ms, p.first_time_ms, static_cast<unsigned long long>(p.expanded),
                     static_cast<unsigned long long>(p.tree_size),
                     static_cast<unsigned long long>(p.collision_checks));
       csv += row;
-      if (!paths_dir.empty() && !path_written && p.status == "solved") {
+      if (!paths_dir.empty() && !path_written && p.status == Status::solved) {
         write_file_atomically(paths_dir + "/" + name + "__" + c.label + ".csv",
                               path_csv<D>(p.path));
         path_written = true;

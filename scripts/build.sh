@@ -1,14 +1,23 @@
 #!/usr/bin/env bash
-# Configures and builds one build tree. Usage: scripts/build.sh [BUILD_DIR] [extra cmake args]
+# Configures and builds one build tree.
+# Usage: scripts/build.sh [BUILD_DIR] [cmake -D options...] [--target T...]
+# Every run states the full configuration (defaults first, then the caller's -D options), so a
+# tree configured earlier with other options (no CLI, no benchmarks, a sanitizer) cannot leave
+# its choices behind in the cache.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 dir=${1:-build}
 shift || true
+config=(-DCMAKE_BUILD_TYPE=Release -DHPCPLAN_BUILD_TESTS=ON -DHPCPLAN_BUILD_BENCH=ON
+  -DHPCPLAN_BUILD_CLI=ON -DHPCPLAN_SANITIZE=)
+targets=()
+while (($#)); do
+  case $1 in
+    --target) targets+=(--target "$2"); shift 2 ;;
+    *) config+=("$1"); shift ;;
+  esac
+done
 generator=()
-command -v ninja >/dev/null && generator=(-G Ninja)
-if [[ ! -f "$dir/CMakeCache.txt" ]]; then
-  cmake -S . -B "$dir" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
-else
-  cmake -S . -B "$dir" "$@" >/dev/null
-fi
-cmake --build "$dir" --parallel "$(nproc)"
+if [[ ! -f "$dir/CMakeCache.txt" ]] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
+cmake -S . -B "$dir" "${generator[@]}" "${config[@]}" >/dev/null
+cmake --build "$dir" --parallel "$(nproc)" "${targets[@]}"

@@ -12,6 +12,7 @@
 #include "hpcplan/io/atomic_file.hpp"
 #include "hpcplan/io/grid_report_json.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
+#include "number_options.hpp"
 
 namespace hpcplan::cli {
 namespace {
@@ -78,31 +79,32 @@ Action register_grid_command(CLI::App& app) {
   auto args = std::make_shared<GridArgs>();
   CLI::App* cmd = app.add_subcommand("grid", "Grid BFS/A* on the GOG procedural obstacle field");
   auto& p = args->problem;
-  cmd->add_option("--dims", p.dims, "Dimensions, 1..16")->required();
+  add_number(cmd, "--dims", p.dims, "Dimensions, 1..16", 1, 16)->required();
   cmd->add_option("--algo", args->algo, "astar | wastar | dijkstra | bfs")->capture_default_str();
   CLI::Option* weight =
-      cmd->add_option("--weight", args->weight, "Weighted A* weight w >= 1 (f = g + w h)")
+      add_number(cmd, "--weight", args->weight, "Weighted A* weight w >= 1 (f = g + w h)", 1, 1e9)
           ->capture_default_str();
   cmd->add_option("--heuristic", args->heuristic, "lattice (exact free-space cost) | euclidean")
       ->capture_default_str();
-  cmd->add_option("--seed", p.gog.seed, "GOG seed")->capture_default_str();
-  cmd->add_option("--extent", p.extent, "Lattice states per axis, 2..65535")->capture_default_str();
+  add_number(cmd, "--seed", p.gog.seed, "GOG seed")->capture_default_str();
+  add_number(cmd, "--extent", p.extent, "Lattice states per axis, 2..65535", 2, 65535)
+      ->capture_default_str();
   cmd->add_option("--start", args->start, "Start state c1,c2,... (default: corner 0, adjusted)");
   cmd->add_option("--goal", args->goal, "Goal state (default: corner extent-1, adjusted)");
-  cmd->add_option("--max-states", args->options.max_states,
-                  "Stored-state budget (0 = half of available memory)")
+  add_number(cmd, "--max-states", args->options.max_states,
+             "Stored-state budget (0 = half of available memory)")
       ->capture_default_str();
-  cmd->add_option("--time-limit", args->options.time_limit_s, "Seconds (0 = none)")
+  add_number(cmd, "--time-limit", args->options.time_limit_s, "Seconds (0 = none)", 0, 1e9)
       ->capture_default_str();
   cmd->add_option("--connectivity", args->connectivity, "seed (1 or 2 axes) | full (d <= 4)")
       ->capture_default_str();
-  cmd->add_option("--threshold", p.gog.threshold, "GOG threshold c_v (0 = from --density)")
+  add_number(cmd, "--threshold", p.gog.threshold, "GOG threshold c_v (0 = from --density)", 0, 49)
       ->capture_default_str();
-  cmd->add_option("--density", p.gog.density,
-                  "Blocked fraction aimed at by the automatic threshold")
+  add_number(cmd, "--density", p.gog.density,
+             "Blocked fraction aimed at by the automatic threshold", 0, 1)
       ->capture_default_str();
-  cmd->add_option("--gog-shift-p", p.gog.shift_p, "GOG b_p")->capture_default_str();
-  cmd->add_option("--gog-shift-v", p.gog.shift_v, "GOG b_v")->capture_default_str();
+  add_number(cmd, "--gog-shift-p", p.gog.shift_p, "GOG b_p", 0, 63)->capture_default_str();
+  add_number(cmd, "--gog-shift-v", p.gog.shift_v, "GOG b_v", 0, 61)->capture_default_str();
   auto& d = args->dist;
   const char* mpi = "Distributed (under mpirun/srun)";
   cmd->add_option("--mode", args->mode,
@@ -110,33 +112,35 @@ Action register_grid_command(CLI::App& app) {
                   "BFS is always level-synchronous")
       ->capture_default_str()
       ->group(mpi);
-  cmd->add_option("--owner-coarsen", d.coarsen_shift,
-                  "Ownership hashes each coordinate >> k, keeping 2^k-wide cells on one rank")
+  add_number(cmd, "--owner-coarsen", d.coarsen_shift,
+             "Ownership hashes each coordinate >> k, keeping 2^k-wide cells on one rank", 0, 16)
       ->capture_default_str()
       ->group(mpi);
-  cmd->add_option("--batch", d.batch, "Async: records per message")
+  add_number(cmd, "--batch", d.batch, "Async: records per message", 1, 1048576)
       ->capture_default_str()
       ->group(mpi);
-  cmd->add_option("--batch-age-ms", d.batch_age_ms, "Async: longest a record waits to be sent")
+  add_number(cmd, "--batch-age-ms", d.batch_age_ms, "Async: longest a record waits to be sent", 0,
+             1000)
       ->capture_default_str()
       ->group(mpi);
-  cmd->add_option("--sync-every", d.sync_every, "Bulk: expansions between exchanges")
+  add_number(cmd, "--sync-every", d.sync_every, "Bulk: expansions between exchanges", 1, 1e18)
       ->capture_default_str()
       ->group(mpi);
-  cmd->add_option("--sent-filter", d.sent_filter_log2,
-                  "log2 slots of the filter that drops re-sent duplicate states (0 = off)")
+  add_number(cmd, "--sent-filter", d.sent_filter_log2,
+             "log2 slots of the filter that drops re-sent duplicate states (0 = off)", 0, 28)
       ->capture_default_str()
       ->group(mpi);
   cmd->add_flag("--compare-serial", d.compare_serial,
                 "Rank 0 also solves serially first and reports search overhead and speedup")
       ->group(mpi);
-  cmd->add_option("--simulate-ranks", args->simulate_ranks,
-                  "Predict the split over these rank counts (e.g. 2,4,...,4096) from one serial "
-                  "search, instead of running distributed")
+  add_number(cmd, "--simulate-ranks", args->simulate_ranks,
+             "Predict the split over these rank counts (e.g. 2,4,...,4096) from one serial "
+             "search, instead of running distributed",
+             1, 1048576)
       ->delimiter(',')
       ->group(mpi);
-  cmd->add_option("--simulate-coarsen", args->simulate_shifts,
-                  "Ownership shifts k to predict for (0 = state hash)")
+  add_number(cmd, "--simulate-coarsen", args->simulate_shifts,
+             "Ownership shifts k to predict for (0 = state hash)", 0, 16)
       ->delimiter(',')
       ->capture_default_str()
       ->group(mpi);

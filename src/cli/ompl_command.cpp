@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/sampling/ompl_benchmark.hpp"
+#include "number_options.hpp"
 
 namespace hpcplan::cli {
 namespace {
@@ -75,25 +76,26 @@ Action register_ompl_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "ompl", "Grid A* vs OMPL sampling planners on the GOG field (OMPL benchmark log + CSV)");
   auto& o = args->options;
-  cmd->add_option("--dims", o.dims, "Dimensions, 2..10")->required();
+  add_number(cmd, "--dims", o.dims, "Dimensions, 2..10", 2, 10)->required();
   cmd->add_option("--planners", o.planners,
                   "Comma-separated: gridastar, gridastar_lattice, bitstar, fmt, fmt_radius, "
                   "abitstar, aitstar, rrtconnect, rrtstar, informedrrtstar, prmstar")
       ->delimiter(',')
       ->capture_default_str();
-  cmd->add_option("--time", o.time_s, "Seconds per run")->capture_default_str();
-  cmd->add_option("--runs", o.runs, "Runs per planner")->capture_default_str();
-  cmd->add_option("--seed", o.seed, "GOG field and OMPL random seed")->capture_default_str();
-  cmd->add_option("--extent", o.extent, "Cells per axis; bounds are [0, extent]")
+  add_number(cmd, "--time", o.time_s, "Seconds per run", 1e-6, 3600)->capture_default_str();
+  add_number(cmd, "--runs", o.runs, "Runs per planner", 1, 10000)->capture_default_str();
+  add_number(cmd, "--seed", o.seed, "GOG field and OMPL random seed")->capture_default_str();
+  add_number(cmd, "--extent", o.extent, "Cells per axis; bounds are [0, extent]", 2, 1000)
       ->capture_default_str();
-  cmd->add_option("--density", o.gog.density, "Blocked fraction aimed at")->capture_default_str();
+  add_number(cmd, "--density", o.gog.density, "Blocked fraction aimed at", 0, 1)
+      ->capture_default_str();
   cmd->add_option("--motion", o.motion,
                   "exact (every touched cell free) | discrete (OMPL's sampled validator)")
       ->capture_default_str();
-  cmd->add_option("--resolution", o.resolution_cells,
-                  "Discrete motion checks: spacing in cell widths, (0, 1]")
+  add_number(cmd, "--resolution", o.resolution_cells,
+             "Discrete motion checks: spacing in cell widths, (0, 1]", 1e-9, 1)
       ->capture_default_str();
-  cmd->add_option("--grid-weight", o.grid_weight, "Grid planner weight (1 = A*)")
+  add_number(cmd, "--grid-weight", o.grid_weight, "Grid planner weight (1 = A*)", 1, 1e9)
       ->capture_default_str();
   cmd->add_flag("--no-shortcut", args->no_shortcut,
                 "gridastar keeps its lattice path (gridastar_lattice always does)");

@@ -15,6 +15,7 @@
 #include "hpcplan/plan/world_planner.hpp"
 #include "hpcplan/world/box_map_io.hpp"
 #include "hpcplan/world/sphere_world.hpp"
+#include "number_options.hpp"
 
 namespace hpcplan::cli {
 
@@ -53,7 +54,7 @@ template <int D>
 nlohmann::json to_json(const plan::WorldPlan<D>& p) {
   nlohmann::json path = nlohmann::json::array();
   for (const auto& q : p.path) path.push_back(q);
-  nlohmann::json j = {{"status", p.status},
+  nlohmann::json j = {{"status", to_string(p.status)},
                       {"algo", p.algo},
                       {"length", p.length},
                       {"raw_length", p.raw_length},
@@ -76,7 +77,7 @@ std::string summary(const plan::WorldPlan<D>& p, const std::string& map) {
   s += buf;
   const std::pair<const char*, std::string> rows[] = {
       {"algorithm", p.algo},
-      {"status", p.status},
+      {"status", std::string(to_string(p.status))},
       {"length", std::to_string(p.length)},
       {"as planned", std::to_string(p.raw_length)},
       {"waypoints", std::to_string(p.path.size())},
@@ -111,17 +112,17 @@ int run(const WorldArgs& a, const Map& map) {
   const plan::WorldPlan<D> p = plan::plan_in_world(map.world, start, goal, a.options);
   const std::string json = to_json(p).dump() + "\n";
   if (!a.output.empty()) write_file_atomically(a.output, json);
-  if (!a.path_out.empty() && p.status == "solved")
+  if (!a.path_out.empty() && p.status == Status::solved)
     write_file_atomically(a.path_out, path_csv<D>(p.path));
   std::fputs(a.json ? json.c_str() : summary(p, a.map).c_str(), stdout);
-  if (p.status != "solved") {
+  // No path is an answer (exit 0, status in the output); a hint on stderr says what to try.
+  if (p.status != Status::solved) {
     std::fflush(stdout);
-    std::fprintf(stderr, "hpcplan: error: %s found no path (%s)%s\n", p.algo.c_str(),
-                 p.status.c_str(),
-                 p.status == "timeout"  ? "; raise --time"
-                 : p.algo == "visgraph" ? "; try a finer --spacing"
-                                        : "; try a finer --resolution");
-    return kExitRunFailure;
+    std::fprintf(stderr, "hpcplan: %s found no path (%s)%s\n", p.algo.c_str(),
+                 std::string(to_string(p.status)).c_str(),
+                 p.status == Status::timeout ? "; raise --time"
+                 : p.algo == "visgraph"      ? "; try a finer --spacing"
+                                             : "; try a finer --resolution");
   }
   return kExitOk;
 }
@@ -137,22 +138,26 @@ void add_common(CLI::App* cmd, const std::shared_ptr<WorldArgs>& args, const cha
                   "astar|wastar|dijkstra|thetastar|visgraph|rrt|birrt|rrtstar|hybrid|"
                   "hybrid_pick|hybrid_sample|ompl:<name>")
       ->capture_default_str();
-  cmd->add_option("--resolution", o.resolution, "Grid spacing of the searches")
+  add_number(cmd, "--resolution", o.resolution, "Grid spacing of the searches", 1e-9, 1e9)
       ->capture_default_str();
-  cmd->add_option("--spacing", o.spacing,
-                  "visgraph: bend points this far apart along obstacle edges (0 = a 40th of the "
-                  "world's largest side)")
+  add_number(cmd, "--spacing", o.spacing,
+             "visgraph: bend points this far apart along obstacle edges (0 = a 40th of the "
+             "world's largest side)",
+             0, 1e9)
       ->capture_default_str();
-  cmd->add_option("--weight", o.weight, "Heuristic weight of wastar (>= 1)")->capture_default_str();
-  cmd->add_option("--seed", o.seed, "Random seed")->capture_default_str();
-  cmd->add_option("--time", o.time_s,
-                  "Seconds: RRT* and OMPL's anytime planners refine until then; others give up")
+  add_number(cmd, "--weight", o.weight, "Heuristic weight of wastar (>= 1)", 1, 1e9)
       ->capture_default_str();
-  cmd->add_option("--step", o.step, "Tree planners' step (0 = a twentieth of the world)")
+  add_number(cmd, "--seed", o.seed, "Random seed")->capture_default_str();
+  add_number(cmd, "--time", o.time_s,
+             "Seconds: RRT* and OMPL's anytime planners refine until then; others give up", 1e-6,
+             1e9)
       ->capture_default_str();
-  cmd->add_option("--samples", o.samples_per_expansion, "Hybrid: random points drawn per expansion")
+  add_number(cmd, "--step", o.step, "Tree planners' step (0 = a twentieth of the world)", 0, 1e9)
       ->capture_default_str();
-  cmd->add_option("--max-states", o.max_states, "Grid searches: stop beyond this many states");
+  add_number(cmd, "--samples", o.samples_per_expansion, "Hybrid: random points drawn per expansion",
+             1, 1000000)
+      ->capture_default_str();
+  add_number(cmd, "--max-states", o.max_states, "Grid searches: stop beyond this many states");
   cmd->add_flag("--shortcut", o.shortcut, "Shortcut and tighten the path");
   cmd->add_flag("--json", args->json, "Print one JSON object instead of a summary");
   cmd->add_option("--path-out", args->path_out, "Write the path as CSV (atomically)");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "hpcplan/core/check_counter.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/graph/continuous_grid.hpp"
@@ -62,7 +63,7 @@ void run_grid(const W& world, const world::Vec<W::kDim>& start, const world::Vec
   const Grid grid(world, start, goal, config);
   search::Options so;
   so.max_states = o.max_states;
-  so.time_limit_s = o.time_s > 0 && hybrid ? o.time_s : 0.0;
+  so.stop = Stop::after(hybrid ? o.time_s : 0.0, o.cancel);
   so.seed = o.seed;
   if (o.algo == "wastar") {
     if (!(o.weight >= 1.0)) throw InputError("--weight must be at least 1");
@@ -94,7 +95,7 @@ void run_grid(const W& world, const world::Vec<W::kDim>& start, const world::Vec
       result = search::best_first_search<Map>(grid, Grid::kStart, Grid::kGoal,
                                               LatticeToGoal<Grid>{&grid}, so);
   }
-  plan.status = std::string(search::to_string(result.status));
+  plan.status = result.status;
   for (auto s : result.path) plan.path.push_back(grid.point(s));
   plan.expanded = result.counters.expanded;
   plan.tree_size = result.counters.peak_states;
@@ -113,9 +114,10 @@ void run_visibility(const W& world, const world::Vec<W::kDim>& start,
   search::Options so;
   so.max_states = o.max_states;
   so.dense_keys = graph.vertex_count();
+  so.stop = Stop(o.cancel);
   const auto result = search::best_first_search<search::DenseThenHashPolicy>(
       graph, Graph::kStart, Graph::kGoal, EuclideanToGoal<Graph>{&graph}, so);
-  plan.status = std::string(search::to_string(result.status));
+  plan.status = result.status;
   for (auto s : result.path) plan.path.push_back(graph.point(s));
   plan.expanded = result.counters.expanded;
   plan.tree_size = graph.vertex_count();
@@ -126,7 +128,7 @@ void run_tree(const W& world, const world::Vec<W::kDim>& start, const world::Vec
               const WorldPlanOptions& o, WorldPlan<W::kDim>& plan) {
   tree::TreeOptions to;
   to.seed = o.seed;
-  to.time_limit_s = o.time_s;
+  to.stop = Stop::after(o.time_s, o.cancel);
   to.step = o.step;
   tree::TreeResult<W::kDim> r;
   if (o.algo == "rrt")
@@ -136,8 +138,8 @@ void run_tree(const W& world, const world::Vec<W::kDim>& start, const world::Vec
   else if (o.algo == "rrtstar")
     r = tree::rrt_star(world, start, goal, to);
   else
-    r = sampling::solve_with_ompl(world, start, goal, o.algo.substr(5), o.time_s, o.seed);
-  plan.status = std::string(search::to_string(r.status));
+    r = sampling::solve_with_ompl(world, start, goal, o.algo.substr(5), o.time_s, o.seed, o.cancel);
+  plan.status = r.status;
   plan.path = std::move(r.path);
   plan.tree_size = r.tree_size;
   plan.first_time_ms = r.first_time_ms;
@@ -172,7 +174,7 @@ WorldPlan<W::kDim> plan_in_world(const W& world, const world::Vec<W::kDim>& star
 
   WorldPlan<D> plan;
   plan.algo = o.algo;
-  const std::uint64_t checks0 = world.collision_checks();
+  const std::uint64_t checks0 = CheckCounter::this_thread();
   Stopwatch clock;
   if (o.spacing < 0 || !std::isfinite(o.spacing))
     throw InputError("--spacing must be a positive number");
@@ -183,14 +185,14 @@ WorldPlan<W::kDim> plan_in_world(const W& world, const world::Vec<W::kDim>& star
   else
     run_tree(world, start, goal, o, plan);
   plan.plan_ms = clock.milliseconds();
-  if (plan.status == "solved") {
+  if (plan.status == Status::solved) {
     plan.raw_length = world::polyline_length<D>(plan.path);
     if (o.shortcut) plan.path = world::tighten_path(world, world::shortcut_path(world, plan.path));
     plan.length = world::polyline_length<D>(plan.path);
   }
   plan.time_ms = clock.milliseconds();
-  plan.collision_checks = world.collision_checks() - checks0;
-  if (plan.status == "solved") {
+  plan.collision_checks = CheckCounter::this_thread() - checks0;
+  if (plan.status == Status::solved) {
     if (const std::string why = path_problem(world, plan.path, start, goal); !why.empty())
       throw RunError("internal error: " + o.algo + " returned a bad path: " + why);
   } else {

@@ -1,7 +1,10 @@
 #include "hpcplan/sampling/grid_astar_planner.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <memory>
+#include <stop_token>
+#include <thread>
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/goals/GoalState.h>
@@ -62,9 +65,26 @@ ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition&
   options.heuristic = heuristic_;
   options.time_limit_s = time_limit_s_;
   options.keep_path = true;
-  last_ = solve_grid(problem, options);
+  {
+    // OMPL's termination condition is a predicate; the search polls a stop token. A watcher
+    // thread evaluates the predicate every millisecond and triggers the token, so the search
+    // ends within about a millisecond of the condition turning true.
+    std::stop_source ptc_fired;
+    options.cancel = ptc_fired.get_token();
+    std::jthread watcher([&ptc, &ptc_fired](std::stop_token search_done) {
+      while (!search_done.stop_requested()) {
+        if (ptc()) {
+          ptc_fired.request_stop();
+          return;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+    });
+    last_ = solve_grid(problem, options);
+  }
   world_.checker->add_checks(last_.counters.collision_checks);
-  if (last_.status == search::Status::timeout) return ob::PlannerStatus::TIMEOUT;
+  if (last_.status == search::Status::timeout || last_.status == search::Status::cancelled)
+    return ob::PlannerStatus::TIMEOUT;
   if (last_.status != search::Status::solved) return ob::PlannerStatus::ABORT;
 
   auto path = std::make_shared<og::PathGeometric>(si_);

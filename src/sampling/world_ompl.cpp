@@ -25,6 +25,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "hpcplan/core/check_counter.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/world/box_world.hpp"
@@ -107,7 +108,8 @@ const std::vector<std::string>& world_ompl_planner_names() {
 template <class W>
 tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const world::Vec<W::kDim>& start,
                                           const world::Vec<W::kDim>& goal, const std::string& name,
-                                          double time_s, std::uint64_t seed) {
+                                          double time_s, std::uint64_t seed,
+                                          std::stop_token cancel) {
   constexpr int D = W::kDim;
   const auto it = factories().find(name);
   if (it == factories().end()) throw InputError("unknown OMPL planner '" + name + "'");
@@ -120,7 +122,7 @@ tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const world::Vec<W::kD
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
 
   Stopwatch clock;
-  const std::uint64_t checks0 = world.collision_checks();
+  const std::uint64_t checks0 = CheckCounter::this_thread();
   auto space = std::make_shared<ob::RealVectorStateSpace>(D);
   ob::RealVectorBounds bounds(D);
   const auto box = world.bounds();
@@ -139,7 +141,9 @@ tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const world::Vec<W::kD
   ob::PlannerPtr planner = it->second(si);
   planner->setProblemDefinition(pdef);
   planner->setup();
-  const ob::PlannerStatus status = planner->solve(time_s);
+  const ob::PlannerStatus status = planner->solve(ob::plannerOrTerminationCondition(
+      ob::timedPlannerTerminationCondition(time_s),
+      ob::PlannerTerminationCondition([cancel] { return cancel.stop_requested(); })));
 
   tree::TreeResult<D> r;
   r.time_ms = clock.milliseconds();
@@ -167,15 +171,15 @@ tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const world::Vec<W::kD
             ? search::Status::timeout
             : search::Status::no_path;
   }
-  r.collision_checks = world.collision_checks() - checks0;
+  r.collision_checks = CheckCounter::this_thread() - checks0;
   return r;
 }
 
 template tree::TreeResult<3> solve_with_ompl(const world::BoxWorld&, const world::Vec<3>&,
                                              const world::Vec<3>&, const std::string&, double,
-                                             std::uint64_t);
+                                             std::uint64_t, std::stop_token);
 template tree::TreeResult<2> solve_with_ompl(const world::SphereWorld&, const world::Vec<2>&,
                                              const world::Vec<2>&, const std::string&, double,
-                                             std::uint64_t);
+                                             std::uint64_t, std::stop_token);
 
 }  // namespace hpcplan::sampling

@@ -11,7 +11,7 @@ BoxMap parse_box_map(std::string_view text, const std::string& name) {
   std::optional<Block> boundary;
   std::vector<Block> blocks;
   std::optional<Vec<3>> start, goal;
-  for_each_directive(text, [&](int line, const std::vector<std::string_view>& w) {
+  for_each_directive(text, name, [&](int line, const std::vector<std::string_view>& w) {
     const std::string_view key = w[0];
     auto numbers = [&](std::size_t from) {
       std::vector<double> v;

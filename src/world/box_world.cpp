@@ -121,13 +121,13 @@ bool BoxWorld::any_candidate(const Aabb<3>& region, Visit&& visit) const {
 }
 
 bool BoxWorld::point_free(const Point& p) const {
-  ++checks_;
+  checks_.add();
   if (!boundary_.contains(p)) return false;
   return !any_candidate(Aabb<3>{p, p}, [&](std::uint32_t i) { return boxes_[i].contains(p); });
 }
 
 bool BoxWorld::segment_free(const Point& a, const Point& b) const {
-  ++checks_;
+  checks_.add();
   // The boundary is convex: both ends inside keeps the whole segment inside.
   if (!boundary_.contains(a) || !boundary_.contains(b)) return false;
   Aabb<3> region;

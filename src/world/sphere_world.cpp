@@ -45,7 +45,7 @@ Aabb<2> SphereWorld::bounds() const {
 }
 
 bool SphereWorld::point_free(const Point& p) const {
-  ++checks_;
+  checks_.add();
   if (distance_squared(p, boundary_.centre) > squared(boundary_.radius)) return false;
   for (const Circle& c : obstacles_)
     if (distance_squared(p, c.centre) <= squared(c.radius + margin_)) return false;
@@ -53,7 +53,7 @@ bool SphereWorld::point_free(const Point& p) const {
 }
 
 bool SphereWorld::segment_free(const Point& a, const Point& b) const {
-  ++checks_;
+  checks_.add();
   // The boundary disc is convex: both ends inside keeps the segment inside.
   const double r2 = squared(boundary_.radius);
   if (distance_squared(a, boundary_.centre) > r2 || distance_squared(b, boundary_.centre) > r2)
@@ -99,7 +99,7 @@ SphereMap parse_sphere_map(std::string_view text, const std::string& name) {
   std::optional<Circle> boundary;
   std::vector<Circle> obstacles;
   std::optional<Vec<2>> start, goal;
-  for_each_directive(text, [&](int line, const std::vector<std::string_view>& w) {
+  for_each_directive(text, name, [&](int line, const std::vector<std::string_view>& w) {
     const std::string_view key = w[0];
     if (key == "boundary" || key == "sphere") {
       if (w.size() != 4) throw InputError(where(name, line) + std::string(key) + " needs cx cy r");

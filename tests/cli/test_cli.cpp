@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "hpcplan/env/gog.hpp"
 
@@ -35,6 +36,13 @@ CliRun run(const std::string& args) {
   r.err = ss.str();
   std::filesystem::remove(err_file);
   return r;
+}
+
+std::string read_file(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
 }
 
 void expect_bad_input(const std::string& args, const std::string& mentions) {
@@ -171,9 +179,11 @@ TEST(Cli, OutputFileIsWrittenWholeOrNotAtAll) {
   std::ifstream in(file);
   EXPECT_EQ(nlohmann::json::parse(in)["status"], "solved");
   // A bad request leaves the previous result untouched and no temporary behind.
+  const std::string before = read_file(file);
   r = run("grid --dims 0 --output " + file.string());
   EXPECT_EQ(r.code, 2);
-  EXPECT_TRUE(std::filesystem::exists(file));
+  EXPECT_EQ(read_file(file), before);
+  ASSERT_FALSE(before.empty());
   // An unwritable destination is a run failure (exit 1), not a crash.
   r = run("grid --dims 2 --output /nonexistent-dir/x.json");
   EXPECT_EQ(r.code, 1);
@@ -181,6 +191,71 @@ TEST(Cli, OutputFileIsWrittenWholeOrNotAtAll) {
   std::size_t entries = 0;
   for ([[maybe_unused]] auto& e : std::filesystem::directory_iterator(dir)) ++entries;
   EXPECT_EQ(entries, 1u);
+}
+
+// Every numeric option of every subcommand, tried with what must be refused: negative values
+// (none of these options takes one), NaN, infinities, overflow, words and a value past its range.
+TEST(Cli, EveryNumericOptionRefusesBadValues) {
+  const std::string map = std::string(" --map ") + HPCPLAN_MAPS_DIR + "/single_box.txt";
+  const std::string sphere = std::string(" --map ") + HPCPLAN_MAPS_DIR + "/sphere_world.txt";
+  struct Case {
+    std::string base, option, too_big;  // too_big: "" when the type's own range is the limit
+  };
+  const std::vector<Case> cases = {
+      {"grid", "--dims", "17"},
+      {"grid --dims 2", "--weight", "1e10"},
+      {"grid --dims 2", "--seed", "18446744073709551616"},
+      {"grid --dims 2", "--extent", "65536"},
+      {"grid --dims 2", "--max-states", "18446744073709551616"},
+      {"grid --dims 2", "--time-limit", "1e10"},
+      {"grid --dims 2", "--threshold", "50"},
+      {"grid --dims 2", "--density", "1.5"},
+      {"grid --dims 2", "--gog-shift-p", "64"},
+      {"grid --dims 2", "--gog-shift-v", "62"},
+      {"grid --dims 2", "--owner-coarsen", "17"},
+      {"grid --dims 2", "--batch", "1048577"},
+      {"grid --dims 2", "--batch-age-ms", "1001"},
+      {"grid --dims 2", "--sync-every", "1e19"},
+      {"grid --dims 2", "--sent-filter", "29"},
+      {"grid --dims 2", "--simulate-ranks", "1048577"},
+      {"grid --dims 2 --simulate-ranks 2", "--simulate-coarsen", "17"},
+      {"ompl", "--dims", "11"},
+      {"ompl --dims 2", "--time", "3601"},
+      {"ompl --dims 2", "--runs", "10001"},
+      {"ompl --dims 2", "--seed", "18446744073709551616"},
+      {"ompl --dims 2", "--extent", "1001"},
+      {"ompl --dims 2", "--density", "2"},
+      {"ompl --dims 2", "--resolution", "1.5"},
+      {"ompl --dims 2", "--grid-weight", "1e10"},
+  };
+  std::vector<Case> all = cases;
+  for (const char* world : {"map3d", "sphere2d"})
+    for (const char* option : {"--resolution", "--spacing", "--weight", "--seed", "--time",
+                               "--step", "--samples", "--max-states"}) {
+      const std::string base = std::string(world) + (world[0] == 'm' ? map : sphere);
+      const std::string o = option;
+      all.push_back({base, o,
+                     o == "--samples"                       ? "1000001"
+                     : o == "--seed" || o == "--max-states" ? "18446744073709551616"
+                                                            : "1e10"});
+    }
+  int tried = 0;
+  for (const Case& c : all) {
+    std::vector<std::string> bad = {"-5",   "-0.5",  "nan", "NaN", "inf",
+                                    "-inf", "1e400", "abc", "3x",  ""};
+    if (!c.too_big.empty()) bad.push_back(c.too_big);
+    for (const std::string& v : bad) {
+      const std::string args = c.base + " " + c.option + " '" + v + "'";
+      SCOPED_TRACE(args);
+      const CliRun r = run(args);
+      EXPECT_EQ(r.code, 2) << r.err;
+      EXPECT_TRUE(r.out.empty());
+      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+      EXPECT_NE(r.err.find(c.option), std::string::npos) << r.err;
+      ++tried;
+    }
+  }
+  EXPECT_EQ(tried, 41 * 10 + 41);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # hpcplan map3d / sphere2d end to end: JSON contract, exact ends, path files, and bad input
-# (exit 2, one line naming the problem), unreachable goals (exit 1), nothing half-written.
+# (exit 2, one line naming the problem), unreachable goals (exit 0, status no_path), nothing
+# half-written.
 set -euo pipefail
 BIN=$1
 MAPS=$2
@@ -88,26 +89,37 @@ printf 'boundary 0 0 10\nsphere 1 2\n' >"$tmp/s.txt"
 expect_bad "s.txt:2: sphere needs cx cy r" sphere2d --map "$tmp/s.txt" --start 0,0 --goal 1,1
 expect_bad "inside the sphere of line" sphere2d --map "$MAPS/sphere_world.txt" --start 0,-1
 
-# An unreachable goal: exit 1 with a one-line reason, and no path file written.
+# An unreachable goal is an answer: exit 0, status in the output (JSON and summary), a hint on
+# stderr, and no path file written.
 printf 'boundary 0 0 0 10 10 10\nblock 4.99 0 0 5.01 10 10\n' >"$tmp/sealed.txt"
 for algo in astar thetastar visgraph; do
-  set +e
-  "$BIN" map3d --map "$tmp/sealed.txt" --start 1,5,5 --goal 9,5,5 --algo "$algo" --path-out "$tmp/none.csv" >/dev/null 2>"$tmp/e"
-  code=$?
-  set -e
-  [[ $code == 1 ]] || fail "unreachable goal: exit $code"
+  "$BIN" map3d --map "$tmp/sealed.txt" --start 1,5,5 --goal 9,5,5 --algo "$algo" --json \
+    --path-out "$tmp/none.csv" >"$tmp/o" 2>"$tmp/e" || fail "unreachable goal ($algo): exit $?"
+  "$PY" -c "import json; j=json.load(open('$tmp/o')); assert j['status']=='no_path' and j['path']==[], j" ||
+    fail "unreachable goal ($algo): $(cat "$tmp/o")"
   grep -q "found no path (no_path)" "$tmp/e" || fail "unreachable goal message: $(cat "$tmp/e")"
   [[ ! -e "$tmp/none.csv" ]] || fail "a path file was written for an unsolved query"
 done
-set +e
-"$BIN" map3d --map "$tmp/sealed.txt" --start 1,5,5 --goal 9,5,5 --algo rrt --time 0.2 >/dev/null 2>"$tmp/e"
-code=$?
-set -e
-[[ $code == 1 ]] && grep -q "(timeout); raise --time" "$tmp/e" || fail "rrt timeout: exit $code $(cat "$tmp/e")"
-# A memory budget is a clear failure too.
-set +e
-"$BIN" map3d --map "$MAPS/maze.txt" --max-states 1000 >/dev/null 2>"$tmp/e"
-code=$?
-set -e
-[[ $code == 1 ]] && grep -q "budget_exceeded" "$tmp/e" || fail "budget: exit $code $(cat "$tmp/e")"
+"$BIN" map3d --map "$tmp/sealed.txt" --start 1,5,5 --goal 9,5,5 --algo rrt --time 0.2 >"$tmp/o" 2>"$tmp/e" ||
+  fail "rrt timeout: exit $?"
+grep -q "status *timeout" "$tmp/o" && grep -q "(timeout); raise --time" "$tmp/e" || fail "rrt timeout: $(cat "$tmp/o" "$tmp/e")"
+# A memory budget is an answer too.
+"$BIN" map3d --map "$MAPS/maze.txt" --max-states 1000 --json >"$tmp/o" 2>"$tmp/e" || fail "budget: exit $?"
+grep -q '"status":"budget_exceeded"' "$tmp/o" || fail "budget: $(cat "$tmp/o" "$tmp/e")"
+
+# Files that are not world files: a device that never ends, one endless line.
+expect_bad "larger than 64 MiB" map3d --map /dev/zero --start 1,1,1 --goal 2,2,2
+head -c 10000 /dev/zero | tr '\0' 'x' >"$tmp/long.txt"
+expect_bad "long.txt:1: line longer than 4096 bytes" map3d --map "$tmp/long.txt" --start 1,1,1 --goal 2,2,2
+expect_bad "larger than 64 MiB" sphere2d --map /dev/zero --start 1,1 --goal 2,2
+
+# --shortcut keeps the exact ends when the goal lies on the boundary's face (z = 0.1 is not
+# 4.9 + (0.1 - 4.9) in doubles): every planner that tightens.
+printf 'boundary 0 0 0 4.3 20 5\nblock 1.0 0 0 1.1 19 5\nblock 2.1 1 0 2.2 20 5\n' >"$tmp/edge.txt"
+for algo in visgraph astar birrt thetastar; do
+  "$BIN" map3d --map "$tmp/edge.txt" --start 0.5,1.0,4.9 --goal 3.0,1.0,0.1 --algo "$algo" \
+    --shortcut --json >"$tmp/o" 2>"$tmp/e" || fail "edge map $algo --shortcut: $(cat "$tmp/e")"
+  "$PY" -c "import json; j=json.load(open('$tmp/o')); assert j['status']=='solved' and j['path'][-1]==[3.0,1.0,0.1], j['path'][-1]" ||
+    fail "edge map $algo: bad end"
+done
 echo "world cli: all checks passed"

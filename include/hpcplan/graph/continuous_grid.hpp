@@ -18,6 +18,7 @@
 #include <limits>
 #include <vector>
 
+#include "hpcplan/core/check_counter.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/splitmix64.hpp"
 #include "hpcplan/world/point.hpp"
@@ -101,7 +102,8 @@ class ContinuousGrid {
   std::uint64_t vertex_count() const {
     return stride_[D - 1] * static_cast<std::uint64_t>(n_[D - 1]);
   }
-  std::uint64_t collision_checks() const { return world_.collision_checks(); }
+  // This thread's checks: the world may be shared with other planning threads.
+  std::uint64_t collision_checks() const { return CheckCounter::this_thread(); }
   std::size_t samples() const { return samples_.size(); }
 
   Point point(State s) const {

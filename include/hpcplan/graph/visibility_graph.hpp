@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "hpcplan/core/check_counter.hpp"
 #include "hpcplan/core/splitmix64.hpp"
 #include "hpcplan/world/bend_points.hpp"
 #include "hpcplan/world/point.hpp"
@@ -39,7 +40,8 @@ class VisibilityGraph {
       : world_(world), start_(start), goal_(goal), bends_(std::move(bends)) {}
 
   std::uint64_t vertex_count() const { return bends_.size() + 2; }
-  std::uint64_t collision_checks() const { return world_.collision_checks(); }
+  // This thread's checks: the world may be shared with other planning threads.
+  std::uint64_t collision_checks() const { return CheckCounter::this_thread(); }
   const Point& goal_point() const { return goal_; }
   Point point(State s) const {
     return s == kStart ? start_ : s == kGoal ? goal_ : bends_[s - 2].point;

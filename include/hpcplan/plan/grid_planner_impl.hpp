@@ -15,7 +15,7 @@ inline search::Options engine_options(const GridSearchOptions& o, double weight,
                                       std::uint64_t budget) {
   search::Options e;
   e.max_states = budget;
-  e.time_limit_s = o.time_limit_s;
+  e.stop = Stop::after(o.time_limit_s, o.cancel);
   e.weight = weight;
   switch (o.algorithm) {
     case GridAlgorithm::astar:

@@ -3,6 +3,7 @@
 // the distributed layer all build before searching.
 #include <cstdint>
 #include <optional>
+#include <stop_token>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,7 +40,8 @@ struct GridSearchOptions {
   std::optional<double> weight;  // weighted A* only; default 2
   HeuristicKind heuristic = HeuristicKind::lattice;
   std::uint64_t max_states = 0;  // 0 = derived from available memory
-  double time_limit_s = 0.0;
+  double time_limit_s = 0.0;     // 0 = none; counted from the start of the search
+  std::stop_token cancel;        // another thread may end the search (status cancelled)
   bool keep_path = false;
 };
 

@@ -6,8 +6,11 @@
 // by segment with the world's exact test (a failure there is an internal error, never an
 // answer).
 #include <cstdint>
+#include <stop_token>
 #include <string>
 #include <vector>
+
+#include "hpcplan/core/status.hpp"
 
 #include "hpcplan/world/point.hpp"
 
@@ -26,11 +29,12 @@ struct WorldPlanOptions {
   std::uint64_t max_states = 0;    // grid searches' memory budget (states); 0 = none
   int samples_per_expansion = 10;  // hybrid, hybrid_sample
   bool shortcut = false;           // string pulling + tightening after planning
+  std::stop_token cancel;          // another thread may end the plan (status cancelled)
 };
 
 template <int D>
 struct WorldPlan {
-  std::string status;  // solved, no_path, timeout, budget_exceeded
+  Status status = Status::no_path;
   std::string algo;
   std::vector<world::Vec<D>> path;
   double length = 0.0;          // of `path` (after shortcutting when asked)

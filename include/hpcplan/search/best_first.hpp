@@ -69,6 +69,7 @@ Result<typename G::State> best_first_search(const G& graph, const typename G::St
   Stopwatch clock;
   Store store(h, options);
   const bool is_fifo = options.frontier == Frontier::fifo;
+  Stop stop = options.stop;
 
   auto finish = [&](Status status, bool solved) {
     return complete_result(result, store, graph, start, goal, status, solved, checks_before, clock);
@@ -83,9 +84,7 @@ Result<typename G::State> best_first_search(const G& graph, const typename G::St
   while (store.pop(x, gx, fx)) {
     if (!is_fifo && x == goal) return finish(Status::solved, true);
     ++counters.expanded;
-    if (options.time_limit_s > 0 && (counters.expanded & 1023) == 0 &&
-        clock.seconds() > options.time_limit_s)
-      return finish(Status::timeout, false);
+    if (const auto why = stop.poll()) return finish(*why, false);
 
     bool goal_generated = false;
     bool over_budget = false;

@@ -39,6 +39,7 @@ Result<typename G::State> lazy_theta_star(const G& graph, const typename G::Stat
   o.frontier = Frontier::best_first;
   o.reopen_closed = false;
   Store store(h, o);
+  Stop stop = options.stop;
   auto finish = [&](Status status, bool solved) {
     return complete_result(result, store, graph, start, goal, status, solved, checks_before, clock);
   };
@@ -66,9 +67,7 @@ Result<typename G::State> lazy_theta_star(const G& graph, const typename G::Stat
     }
     if (x == goal) return finish(Status::solved, true);
     ++counters.expanded;
-    if (options.time_limit_s > 0 && (counters.expanded & 1023) == 0 &&
-        clock.seconds() > options.time_limit_s)
-      return finish(Status::timeout, false);
+    if (const auto why = stop.poll()) return finish(*why, false);
 
     const bool has_parent = parent != G::kNoMove;
     const double g_parent = has_parent ? store.find(parent)->g : 0.0;

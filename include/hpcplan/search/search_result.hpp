@@ -1,25 +1,13 @@
 #pragma once
 #include <cstdint>
-#include <string_view>
 #include <vector>
+
+#include "hpcplan/core/status.hpp"
 
 namespace hpcplan::search {
 
-enum class Status { solved, no_path, budget_exceeded, timeout };
-
-constexpr std::string_view to_string(Status s) {
-  switch (s) {
-    case Status::solved:
-      return "solved";
-    case Status::no_path:
-      return "no_path";
-    case Status::budget_exceeded:
-      return "budget_exceeded";
-    case Status::timeout:
-      return "timeout";
-  }
-  return "unknown";
-}
+using hpcplan::Status;
+using hpcplan::to_string;
 
 struct Counters {
   std::uint64_t expanded = 0;          // states taken off the frontier and expanded

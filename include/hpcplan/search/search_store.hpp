@@ -17,6 +17,7 @@
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/huge_page_allocator.hpp"
 #include "hpcplan/core/splitmix64.hpp"
+#include "hpcplan/core/stop.hpp"
 #include "hpcplan/graph/lattice_cost.hpp"
 #include "hpcplan/search/visited_map.hpp"
 
@@ -46,7 +47,7 @@ struct Options {
   double weight = 1.0;           // multiplies h in the priority
   bool reopen_closed = true;     // false for serial weighted A*
   std::uint64_t max_states = 0;  // visited-map size limit; 0 = none
-  double time_limit_s = 0.0;     // 0 = none
+  Stop stop;                     // deadline and/or cancellation; default: never
   std::uint64_t seed = 1;        // Frontier::random only
   std::uint64_t dense_keys = 0;  // map policies with a dense range: keys below this bound
 };

@@ -12,7 +12,8 @@ TreeResult<W::kDim> rrt(const W& world, const world::Vec<W::kDim>& start,
   constexpr int D = W::kDim;
   check_query(world, start, goal);
   Stopwatch clock;
-  const std::uint64_t checks0 = world.collision_checks();
+  Stop stop = run_stop(o);
+  const std::uint64_t checks0 = CheckCounter::this_thread();
   const double step = step_of<D>(o, world.bounds());
   TreeResult<D> r;
   Tree<D> tree;
@@ -21,7 +22,7 @@ TreeResult<W::kDim> rrt(const W& world, const world::Vec<W::kDim>& start,
   auto done = [&](search::Status status) {
     r.status = status;
     r.tree_size = tree.points.size();
-    r.collision_checks = world.collision_checks() - checks0;
+    r.collision_checks = CheckCounter::this_thread() - checks0;
     r.time_ms = clock.milliseconds();
     if (status == search::Status::solved) {
       r.path = tree.branch(static_cast<std::uint32_t>(tree.points.size() - 1));
@@ -36,8 +37,7 @@ TreeResult<W::kDim> rrt(const W& world, const world::Vec<W::kDim>& start,
     return done(search::Status::solved);
   }
   for (;;) {
-    if ((r.samples & 255) == 0 && clock.seconds() > o.time_limit_s)
-      return done(search::Status::timeout);
+    if (const auto why = stop.poll()) return done(*why);
     if (o.max_samples && r.samples >= o.max_samples) return done(search::Status::no_path);
     ++r.samples;
     const world::Vec<D> target = sampler.unit() < o.goal_bias ? goal : sampler.uniform();

@@ -14,7 +14,8 @@ TreeResult<W::kDim> rrt_connect(const W& world, const world::Vec<W::kDim>& start
   constexpr int D = W::kDim;
   check_query(world, start, goal);
   Stopwatch clock;
-  const std::uint64_t checks0 = world.collision_checks();
+  Stop stop = run_stop(o);
+  const std::uint64_t checks0 = CheckCounter::this_thread();
   const double step = step_of<D>(o, world.bounds());
   Tree<D> from_start, from_goal;
   from_start.add_root(start);
@@ -24,7 +25,7 @@ TreeResult<W::kDim> rrt_connect(const W& world, const world::Vec<W::kDim>& start
   auto done = [&](search::Status status, std::uint32_t a = 0, std::uint32_t b = 0) {
     r.status = status;
     r.tree_size = from_start.points.size() + from_goal.points.size();
-    r.collision_checks = world.collision_checks() - checks0;
+    r.collision_checks = CheckCounter::this_thread() - checks0;
     if (status == search::Status::solved) {
       r.path = from_start.branch(a);
       auto back = from_goal.branch(b);
@@ -43,8 +44,7 @@ TreeResult<W::kDim> rrt_connect(const W& world, const world::Vec<W::kDim>& start
   Tree<D>* a = &from_start;
   Tree<D>* b = &from_goal;
   for (;;) {
-    if ((r.samples & 255) == 0 && clock.seconds() > o.time_limit_s)
-      return done(search::Status::timeout);
+    if (const auto why = stop.poll()) return done(*why);
     if (o.max_samples && r.samples >= o.max_samples) return done(search::Status::no_path);
     ++r.samples;
     const world::Vec<D> target = sampler.uniform();

@@ -16,7 +16,8 @@ TreeResult<W::kDim> rrt_star(const W& world, const world::Vec<W::kDim>& start,
   constexpr int D = W::kDim;
   check_query(world, start, goal);
   Stopwatch clock;
-  const std::uint64_t checks0 = world.collision_checks();
+  Stop stop = run_stop(o);
+  const std::uint64_t checks0 = CheckCounter::this_thread();
   const double step = step_of<D>(o, world.bounds());
   const double gamma = o.gamma_factor * 2.0 * std::pow(1.0 + 1.0 / D, 1.0 / D) *
                        std::pow(world.free_volume() / Sampler<D>::unit_ball_volume(), 1.0 / D);
@@ -61,7 +62,10 @@ TreeResult<W::kDim> rrt_star(const W& world, const world::Vec<W::kDim>& start,
   search::Status status = search::Status::timeout;
   const bool straight = solved();  // the straight segment is optimal: nothing to refine
   while (!straight && !(solved() && o.stop_at_first)) {
-    if ((r.samples & 63) == 0 && clock.seconds() > o.time_limit_s) break;
+    if (const auto why = stop.poll()) {
+      status = *why;
+      break;
+    }
     if (o.max_samples && r.samples >= o.max_samples) {
       status = search::Status::no_path;
       break;
@@ -115,7 +119,7 @@ TreeResult<W::kDim> rrt_star(const W& world, const world::Vec<W::kDim>& start,
   }
   r.status = status;
   r.tree_size = points.size();
-  r.collision_checks = world.collision_checks() - checks0;
+  r.collision_checks = CheckCounter::this_thread() - checks0;
   r.time_ms = clock.milliseconds();
   return r;
 }

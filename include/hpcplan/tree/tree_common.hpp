@@ -9,8 +9,10 @@
 #include <utility>
 #include <vector>
 
+#include "hpcplan/core/check_counter.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/splitmix64.hpp"
+#include "hpcplan/core/stop.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/search/search_result.hpp"
 #include "hpcplan/tree/point_index.hpp"
@@ -21,8 +23,8 @@ namespace hpcplan::tree {
 struct TreeOptions {
   double step = 0.0;              // steering distance eta; 0 = a twentieth of the largest extent
   double goal_bias = 0.1;         // probability of sampling the goal (RRT, RRT*)
-  double time_limit_s = 1.0;      // RRT and RRT-Connect stop earlier, at their first path
-  std::uint64_t max_samples = 0;  // 0 = unlimited (within the time)
+  Stop stop;                      // deadline/cancellation; RRT and RRT-Connect end at a path
+  std::uint64_t max_samples = 0;  // 0 = unlimited (then `stop` must be able to stop)
   std::uint64_t seed = 1;
   double gamma_factor = 1.1;   // RRT*: multiple of the asymptotically optimal gamma
   bool informed = true;        // RRT*: sample the ellipsoid that can still improve the path
@@ -164,6 +166,13 @@ struct Tree {
 template <int D>
 double step_of(const TreeOptions& o, const world::Aabb<D>& box) {
   return o.step > 0 ? o.step : default_step<D>(box);
+}
+
+// The run's own copy of the stop condition; a run that nothing could end is bad input.
+inline Stop run_stop(const TreeOptions& o) {
+  if (!o.stop.can_stop() && o.max_samples == 0)
+    throw InputError("a tree planner needs a time limit, a stop token or a sample budget");
+  return o.stop;
 }
 
 template <class W>

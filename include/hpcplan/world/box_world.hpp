@@ -2,10 +2,14 @@
 // A 3D world of axis-aligned boxes (seeds 001 and 004): a boundary box and closed blocks.
 // Segment queries go through a uniform bucket grid so a short edge meets only the few blocks
 // near it; every candidate is then decided exactly by the slab test.
+//
+// Threads: immutable once built; any number of threads may query one world at once (the check
+// counter is atomic).
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "hpcplan/core/check_counter.hpp"
 #include "hpcplan/world/point.hpp"
 
 namespace hpcplan::world {
@@ -43,7 +47,7 @@ class BoxWorld {
   std::string why_not_free(const Point& p) const;
 
   double free_volume() const { return free_volume_; }  // estimated, within ~1%
-  std::uint64_t collision_checks() const { return checks_; }
+  std::uint64_t collision_checks() const { return checks_.value(); }
 
  private:
   template <class Visit>
@@ -58,7 +62,7 @@ class BoxWorld {
   std::vector<std::uint32_t> bucket_start_;  // CSR offsets, size = bucket count + 1
   std::vector<std::uint32_t> bucket_items_;
   double free_volume_ = 0.0;
-  mutable std::uint64_t checks_ = 0;
+  CheckCounter checks_;  // shared by concurrent readers
 };
 
 }  // namespace hpcplan::world

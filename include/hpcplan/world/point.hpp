@@ -22,9 +22,11 @@ double distance(const Vec<D>& a, const Vec<D>& b) {
   return std::sqrt(s);
 }
 
-// a + t (b - a)
+// a + t (b - a), exactly b at t = 1: a + (b - a) rounds to a neighbour of b (4.9 + (0.1 - 4.9)
+// is 0.1000000000000005), and a subdivided path must still end exactly at its goal.
 template <int D>
 Vec<D> lerp(const Vec<D>& a, const Vec<D>& b, double t) {
+  if (t == 1.0) return b;
   Vec<D> p;
   for (int k = 0; k < D; ++k) p[k] = a[k] + t * (b[k] - a[k]);
   return p;
@@ -71,7 +73,8 @@ std::string format_point(const Vec<D>& p) {
 
 // What planners need of a world. Obstacles are closed sets: a point on an obstacle's surface
 // is in collision, and so is a segment that only touches one. Queries count themselves in
-// collision_checks() (a plain counter: one world serves one planning thread at a time).
+// collision_checks(). A world is immutable once built and safe for concurrent readers: several
+// planner threads may share one (the counter is a relaxed atomic, CheckCounter).
 template <class W>
 concept World = requires(const W& w, const Vec<W::kDim>& p) {
   { W::kDim } -> std::convertible_to<int>;

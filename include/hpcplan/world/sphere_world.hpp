@@ -2,12 +2,16 @@
 // The 2D sphere world of seed 003: circular obstacles inside a circular boundary. Free space
 // is the closed boundary disc minus the closed obstacle discs, each padded by 1e-9 times the
 // boundary radius (see kContactMargin in box_world.hpp).
+//
+// Threads: immutable once built; any number of threads may query one world at once (the check
+// counter is atomic).
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "hpcplan/core/check_counter.hpp"
 #include "hpcplan/world/point.hpp"
 
 namespace hpcplan::world {
@@ -35,13 +39,13 @@ class SphereWorld {
   bool box_free(const Aabb<2>& box) const;
   std::string why_not_free(const Point& p) const;
   double free_volume() const;
-  std::uint64_t collision_checks() const { return checks_; }
+  std::uint64_t collision_checks() const { return checks_.value(); }
 
  private:
   Circle boundary_;
   std::vector<Circle> obstacles_;
-  double margin_;  // obstacle padding, as BoxWorld's kContactMargin
-  mutable std::uint64_t checks_ = 0;
+  double margin_;        // obstacle padding, as BoxWorld's kContactMargin
+  CheckCounter checks_;  // shared by concurrent readers
 };
 
 // Text format, one directive per line ('#' comments, blank lines and CRLF accepted):

@@ -13,15 +13,28 @@
 
 namespace hpcplan::world {
 
+// Limits on what a world file may be, so a wrong path (/dev/zero, a core dump) is refused with
+// one line instead of growing memory without end. The shipped maps are under 16 KiB.
+inline constexpr std::size_t kMaxTextFileBytes = std::size_t{64} << 20;
+inline constexpr std::size_t kMaxLineBytes = 4096;
+
+inline std::string where(const std::string& name, int line) {
+  return name + ":" + std::to_string(line) + ": ";
+}
+
 // Calls fn(line number, words) for every line that has words after comments are removed.
+// `name` is the file's name for errors.
 template <class Fn>
-void for_each_directive(std::string_view text, Fn&& fn) {
+void for_each_directive(std::string_view text, const std::string& name, Fn&& fn) {
   int number = 0;
   while (!text.empty()) {
     const std::size_t end = text.find('\n');
     std::string_view line = text.substr(0, end);
     text = end == std::string_view::npos ? std::string_view{} : text.substr(end + 1);
     ++number;
+    if (line.size() > kMaxLineBytes)
+      throw InputError(where(name, number) + "line longer than " + std::to_string(kMaxLineBytes) +
+                       " bytes; is this a world file?");
     if (const std::size_t hash = line.find('#'); hash != std::string_view::npos)
       line = line.substr(0, hash);
     std::vector<std::string_view> words;
@@ -37,10 +50,6 @@ void for_each_directive(std::string_view text, Fn&& fn) {
   }
 }
 
-inline std::string where(const std::string& name, int line) {
-  return name + ":" + std::to_string(line) + ": ";
-}
-
 inline double parse_number(std::string_view word, const std::string& name, int line) {
   double v = 0.0;
   const char* first = word.data();
@@ -54,10 +63,17 @@ inline double parse_number(std::string_view word, const std::string& name, int l
 inline std::string read_text_file(const std::string& path, const char* what) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(std::string("cannot open ") + what + " '" + path + "'");
-  std::ostringstream s;
-  s << in.rdbuf();
+  // Read in chunks up to the cap: a device or pipe has no size to ask for beforehand.
+  std::string text;
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxTextFileBytes)
+      throw InputError(std::string(what) + " '" + path + "' is larger than " +
+                       std::to_string(kMaxTextFileBytes >> 20) + " MiB");
+  }
   if (in.bad()) throw InputError(std::string("cannot read ") + what + " '" + path + "'");
-  return s.str();
+  return text;
 }
 
 }  // namespace hpcplan::world

@@ -131,7 +131,7 @@ class DistributedSearch {
 
  private:
   static constexpr double kInf = std::numeric_limits<double>::infinity();
-  enum Abort : std::uint32_t { none = 0, timed_out = 1, over_budget = 2 };
+  enum Abort : std::uint32_t { none = 0, timed_out = 1, over_budget = 2, cancelled = 3 };
 
   static search::Options adjusted(search::Options o, const DistOptions& d) {
     if (d.scheme == Scheme::level_sync) {
@@ -188,15 +188,17 @@ class DistributedSearch {
   }
 
   // Collective, for the synchronous schedules: sums `work` and `found` over all ranks and
-  // adopts the most severe stop any rank hit (budget over time limit). Time spent counts as
-  // waiting.
+  // adopts the most severe stop any rank hit (cancel over budget over time limit). Time spent
+  // counts as waiting.
   std::array<std::uint64_t, 2> agree(std::uint64_t work, std::uint64_t found) {
     Stopwatch wait;
-    std::uint64_t sums[4] = {work, found, abort_ == timed_out ? 1u : 0u,
-                             abort_ == over_budget ? 1u : 0u};
+    std::uint64_t sums[5] = {work, found, abort_ == timed_out ? 1u : 0u,
+                             abort_ == over_budget ? 1u : 0u, abort_ == cancelled ? 1u : 0u};
     comm_.allreduce_sum(sums);
     wait_ms_ += wait.milliseconds();
-    if (sums[3] != 0)
+    if (sums[4] != 0)
+      abort_ = cancelled;
+    else if (sums[3] != 0)
       abort_ = over_budget;
     else if (sums[2] != 0)
       abort_ = timed_out;
@@ -263,8 +265,9 @@ class DistributedSearch {
   }
 
   void check_time() {
-    if (options_.time_limit_s > 0 && abort_ == none && clock_.seconds() > options_.time_limit_s)
-      abort_locally(timed_out);
+    if (abort_ != none) return;
+    if (const auto why = options_.stop.check())
+      abort_locally(*why == search::Status::cancelled ? cancelled : timed_out);
   }
 
   void abort_locally(Abort why) {
@@ -396,6 +399,8 @@ class DistributedSearch {
       r.status = search::Status::budget_exceeded;
     else if (abort == timed_out)
       r.status = search::Status::timeout;
+    else if (abort == cancelled)
+      r.status = search::Status::cancelled;
     else
       r.status = incumbent < kInf ? search::Status::solved : search::Status::no_path;
     if (r.status == search::Status::solved) {

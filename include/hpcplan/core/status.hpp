@@ -1,0 +1,41 @@
+#pragma once
+// How a planning run ended. Every planner in hpcplan (lattice searches, continuous-world
+// searches, tree planners, OMPL planners, the distributed search) answers with one of these;
+// each is an answer (exit 0 on the command line), not a failure.
+#include <optional>
+#include <string_view>
+
+namespace hpcplan {
+
+enum class Status {
+  solved,   // a path was found and re-validated
+  no_path,  // proved: the reachable set was exhausted (or, for sampling planners: none found)
+  budget_exceeded,  // the state budget ran out first
+  timeout,          // the deadline passed first
+  cancelled,        // another thread asked the run to stop
+};
+
+constexpr std::string_view to_string(Status s) {
+  switch (s) {
+    case Status::solved:
+      return "solved";
+    case Status::no_path:
+      return "no_path";
+    case Status::budget_exceeded:
+      return "budget_exceeded";
+    case Status::timeout:
+      return "timeout";
+    case Status::cancelled:
+      return "cancelled";
+  }
+  return "unknown";
+}
+
+constexpr std::optional<Status> parse_status(std::string_view name) {
+  for (Status s : {Status::solved, Status::no_path, Status::budget_exceeded, Status::timeout,
+                   Status::cancelled})
+    if (to_string(s) == name) return s;
+  return std::nullopt;
+}
+
+}  // namespace hpcplan

@@ -1,0 +1,64 @@
+#pragma once
+// When a planning loop must stop early: an optional deadline and a std::stop_token that another
+// thread may trigger (the simulator's planner thread, OMPL's termination condition, a test).
+// Every search and tree loop polls one of these once per iteration.
+//
+// Threads: a Stop is a value owned by one run; copy it into each run. The token's stop source
+// may be triggered from any thread (std::stop_token is thread-safe).
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <stop_token>
+
+#include "hpcplan/core/status.hpp"
+
+namespace hpcplan {
+
+class Stop {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  Stop() = default;  // never stops
+  explicit Stop(std::stop_token token) : token_(std::move(token)) {}
+
+  // A deadline `seconds` from now; 0 (or less) means none.
+  static Stop after(double seconds, std::stop_token token = {}) {
+    Stop s(std::move(token));
+    if (seconds > 0)
+      s.deadline_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                       std::chrono::duration<double>(seconds));
+    return s;
+  }
+
+  // The same deadline, watching `token` as well.
+  Stop with_token(std::stop_token token) const {
+    Stop s = *this;
+    s.token_ = std::move(token);
+    return s;
+  }
+
+  bool has_deadline() const { return deadline_.has_value(); }
+  bool can_stop() const { return deadline_.has_value() || token_.stop_possible(); }
+
+  // Why to stop now, if at all: `cancelled` wins over `timeout`. Reads the clock every call.
+  std::optional<Status> check() const {
+    if (token_.stop_requested()) return Status::cancelled;
+    if (deadline_ && Clock::now() >= *deadline_) return Status::timeout;
+    return std::nullopt;
+  }
+
+  // The loop's cheap form: the token (one atomic load) every call, the clock every 64th, so a
+  // cancellation is seen at once and a deadline within 64 iterations.
+  std::optional<Status> poll() {
+    if (token_.stop_requested()) return Status::cancelled;
+    if (deadline_ && (++polls_ & 63) == 0 && Clock::now() >= *deadline_) return Status::timeout;
+    return std::nullopt;
+  }
+
+ private:
+  std::stop_token token_;
+  std::optional<Clock::time_point> deadline_;
+  std::uint32_t polls_ = 0;
+};
+
+}  // namespace hpcplan

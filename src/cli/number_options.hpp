@@ -1,0 +1,66 @@
+#pragma once
+// Numeric options that refuse, with exit 2 and one line, what a plain CLI11 option lets through:
+// a negative value for an unsigned target (CLI11 wraps "-5" to 2^64 - 5), NaN and infinities,
+// and anything outside the option's range. Every numeric option of every subcommand is added
+// through add_number, so one table-driven test covers them all (tests/cli/test_cli.cpp).
+#include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace hpcplan::cli {
+
+template <class T>
+CLI::Validator number_check(long double lo, long double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        const char* begin = text.c_str();
+        char* end = nullptr;
+        errno = 0;
+        const long double v = std::strtold(begin, &end);
+        if (end == begin || *end != '\0') return "'" + text + "' is not a number";
+        if (!std::isfinite(v) || errno == ERANGE) return "'" + text + "' is not a finite number";
+        if constexpr (std::is_integral_v<T>)
+          if (v != std::floor(v)) return "'" + text + "' is not a whole number";
+        if (v < lo || v > hi)
+          return "'" + text + "' is out of range [" + CLI::detail::to_string(static_cast<T>(lo)) +
+                 ", " + CLI::detail::to_string(static_cast<T>(hi)) + "]";
+        return {};
+      },
+      "NUMBER");
+}
+
+template <class T>
+struct NumberOf {
+  using type = T;
+};
+template <class T>
+struct NumberOf<std::vector<T>> {  // a delimited list: each element is checked
+  using type = T;
+};
+
+// An option whose values must lie in [lo, hi] (and within the target type).
+template <class Target>
+CLI::Option* add_number(CLI::App* cmd, const std::string& name, Target& target,
+                        const std::string& help, long double lo, long double hi) {
+  using T = typename NumberOf<Target>::type;
+  static_assert(std::is_arithmetic_v<T>);
+  lo = std::max<long double>(lo, std::numeric_limits<T>::lowest());
+  hi = std::min<long double>(hi, std::numeric_limits<T>::max());
+  return cmd->add_option(name, target, help)->check(number_check<T>(lo, hi));
+}
+
+// Any value of the target's type (no negative one for an unsigned type, nothing non-finite).
+template <class Target>
+CLI::Option* add_number(CLI::App* cmd, const std::string& name, Target& target,
+                        const std::string& help) {
+  using T = typename NumberOf<Target>::type;
+  return add_number(cmd, name, target, help, std::numeric_limits<T>::lowest(),
+                    std::numeric_limits<T>::max());
+}
+
+}  // namespace hpcplan::cli

@@ -1,0 +1,146 @@
+// The stop condition every planning loop polls, and the thread contract of the worlds: a search
+// cancelled from another thread ends promptly with consistent counters, and two planners may
+// share one world while a third thread cancels one of them. This suite also runs under
+// ThreadSanitizer (scripts/test.sh).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <stop_token>
+#include <thread>
+#include <vector>
+
+#include "hpcplan/core/stop.hpp"
+#include "hpcplan/graph/continuous_grid.hpp"
+#include "hpcplan/plan/grid_planner.hpp"
+#include "hpcplan/search/best_first.hpp"
+#include "hpcplan/search/dense_visited_map.hpp"
+#include "hpcplan/tree/rrt_star.hpp"
+#include "hpcplan/world/box_map_io.hpp"
+#include "support/path_checks.hpp"
+
+namespace hpcplan {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Grid3 = ContinuousGrid<world::BoxWorld>;
+
+double ms_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+TEST(Stop, DefaultNeverStopsAndReasonsAreReported) {
+  Stop never;
+  EXPECT_FALSE(never.can_stop());
+  for (int i = 0; i < 1000; ++i) ASSERT_FALSE(never.poll());
+
+  EXPECT_EQ(Stop::after(1e-9).check(), Status::timeout);
+  EXPECT_FALSE(Stop::after(0).can_stop());  // 0 means no deadline
+  EXPECT_FALSE(Stop::after(3600).check());
+
+  std::stop_source source;
+  Stop s = Stop::after(3600, source.get_token());
+  EXPECT_FALSE(s.poll());
+  source.request_stop();
+  EXPECT_EQ(s.poll(), Status::cancelled);  // seen on the very next poll
+  // Cancellation wins over an expired deadline.
+  EXPECT_EQ(Stop::after(1e-9, source.get_token()).check(), Status::cancelled);
+}
+
+// A 6D Dijkstra over extent 40 would run for minutes; another thread cancels it.
+TEST(Stop, AnotherThreadCancelsAGridSearchWithinMilliseconds) {
+  std::vector<double> latencies;
+  for (int trial = 0; trial < 3; ++trial) {
+    GridProblem p;
+    p.dims = 6;
+    p.extent = 40;
+    GridSearchOptions o;
+    o.algorithm = GridAlgorithm::dijkstra;
+    o.max_states = 50'000'000;  // a guard: the test must never fill the machine
+    std::stop_source source;
+    o.cancel = source.get_token();
+    std::atomic<Clock::time_point::rep> requested{0};
+    std::jthread canceller([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      requested = Clock::now().time_since_epoch().count();
+      source.request_stop();
+    });
+    const GridReport r = solve_grid(p, o);
+    const Clock::time_point asked{Clock::duration{requested.load()}};
+    latencies.push_back(ms_since(asked));
+    ASSERT_EQ(r.status, Status::cancelled);
+    EXPECT_TRUE(r.path.empty());
+    // Counters of a search stopped between two expansions still add up.
+    EXPECT_GT(r.counters.expanded, 0u);
+    EXPECT_GE(r.counters.generated, r.counters.expanded);
+    EXPECT_GE(r.counters.peak_states, r.counters.expanded);
+    EXPECT_GE(r.counters.collision_checks, r.counters.generated);
+  }
+  // The token is read once per expansion: the search ends within one expansion of the request
+  // (the best of three trials, so a descheduled thread on a busy machine cannot fail it).
+  EXPECT_LT(*std::min_element(latencies.begin(), latencies.end()), 10.0);
+}
+
+TEST(Stop, TwoPlannersShareOneWorldWhileAThirdCancels) {
+  const auto map = world::load_box_map(std::string(HPCPLAN_MAPS_DIR) + "/maze.txt");
+  const world::BoxWorld& w = map.world;
+
+  // The reference, alone.
+  const auto astar = [&](double resolution, Stop stop) {
+    const Grid3 g(w, *map.start, *map.goal, {resolution});
+    search::Options o;
+    if (g.vertex_count() <= (std::uint64_t{1} << 26)) o.dense_keys = g.vertex_count();
+    o.stop = stop;
+    auto r = search::best_first_search<search::DenseThenHashPolicy>(g, Grid3::kStart, Grid3::kGoal,
+                                                                    LatticeToGoal<Grid3>{&g}, o);
+    std::vector<world::Vec<3>> path;
+    for (auto s : r.path) path.push_back(g.point(s));
+    return std::pair{r, path};
+  };
+  const auto alone = astar(0.25, {});
+  ASSERT_EQ(alone.first.status, Status::solved);
+
+  std::stop_source cancel_rrt, cancel_fine;
+  std::atomic<int> finished{0};
+  decltype(astar(0.25, {})) together;
+  tree::TreeResult<3> rrt;
+  decltype(astar(0.25, {})) fine;
+  {
+    std::jthread a([&] {
+      together = astar(0.25, {});
+      ++finished;
+    });
+    std::jthread b([&] {
+      tree::TreeOptions o;
+      o.stop = Stop(cancel_rrt.get_token());  // nothing else ends RRT*: only the cancel
+      rrt = tree::rrt_star(w, *map.start, *map.goal, o);
+    });
+    std::jthread c([&] {  // a 2 cm grid search: far longer than the test
+      fine = astar(0.02, Stop(cancel_fine.get_token()));
+    });
+    std::jthread canceller([&] {
+      while (finished.load() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      cancel_rrt.request_stop();
+      cancel_fine.request_stop();
+    });
+  }
+  // The shared world gave the concurrent A* the same answer, with its own check count.
+  ASSERT_EQ(together.first.status, Status::solved);
+  EXPECT_EQ(together.first.cost, alone.first.cost);
+  EXPECT_EQ(together.first.counters.expanded, alone.first.counters.expanded);
+  EXPECT_EQ(together.first.counters.collision_checks, alone.first.counters.collision_checks);
+  test_support::expect_valid(w, together.second, *map.start, *map.goal, "concurrent astar");
+  // RRT* ran until cancelled; whatever it holds then is a valid path.
+  EXPECT_GT(rrt.samples, 0u);
+  if (rrt.status == Status::solved)
+    test_support::expect_valid(w, rrt.path, *map.start, *map.goal, "cancelled rrtstar");
+  else
+    EXPECT_EQ(rrt.status, Status::cancelled);
+  EXPECT_EQ(fine.first.status, Status::cancelled);
+  EXPECT_TRUE(fine.first.path.empty());
+}
+
+}  // namespace
+}  // namespace hpcplan
