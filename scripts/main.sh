@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job: install, build, and solve seed 002's default problems for d = 2..10 on two MPI
 # ranks (hash-distributed A*), each checked against the serial engine in the same job, plus
-# a level-synchronous BFS; prints one readable table.
+# a level-synchronous BFS and one search large enough for the ranks to pay; prints one table.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -16,4 +16,8 @@ echo "hpcplan: grid search on the GOG field over 2 MPI ranks (mpirun -np 2), sta
     mpirun -np 2 --oversubscribe build/bin/hpcplan grid --dims "$d" --compare-serial --json
   done
   mpirun -np 2 --oversubscribe build/bin/hpcplan grid --dims 3 --algo bfs --compare-serial --json
+  # A search big enough for two ranks to pay (about 2-3 s serially on one core of this kind of
+  # machine): 6D Dijkstra, bulk-synchronous, ownership by 2-wide cells.
+  mpirun -np 2 --oversubscribe build/bin/hpcplan grid --dims 6 --extent 11 --algo dijkstra \
+    --mode bulk --owner-coarsen 1 --compare-serial --json
 } | python3 scripts/grid_table.py

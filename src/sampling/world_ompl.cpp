@@ -163,13 +163,13 @@ tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const world::Vec<W::kD
     }
   }
   if (!r.path.empty()) {
-    r.status = search::Status::solved;
+    r.status = Status::solved;
     r.length = world::polyline_length<D>(r.path);
   } else {
     r.status =
         status == ob::PlannerStatus::TIMEOUT || status == ob::PlannerStatus::APPROXIMATE_SOLUTION
-            ? search::Status::timeout
-            : search::Status::no_path;
+            ? Status::timeout
+            : Status::no_path;
   }
   r.collision_checks = CheckCounter::this_thread() - checks0;
   return r;

@@ -18,7 +18,17 @@ int main(int argc, char** argv) {
     std::ifstream in(argv[i], std::ios::binary);
     std::stringstream s;
     s << in.rdbuf();
+    if (!in || s.str().empty()) {
+      std::fprintf(stderr, "fuzz replay: cannot read corpus file '%s' (or it is empty)\n", argv[i]);
+      return 1;
+    }
     corpus.push_back(s.str());
+  }
+  // A glob that matched nothing would otherwise replay nothing and pass.
+  if (corpus.size() < 5) {
+    std::fprintf(stderr, "fuzz replay: %zu corpus files given, expected the shipped maps\n",
+                 corpus.size());
+    return 1;
   }
   const char* tokens[] = {"boundary", "block", "start", "goal", "sphere", "nan",   "inf", "-",
                           "1e308",    "\r\n",  "#",     " ",    "\t",     "0x1p3", "+",   "."};

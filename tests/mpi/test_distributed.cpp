@@ -290,6 +290,17 @@ int main(int argc, char** argv) {
   const hpcplan::mpi::Communicator comm;
   g_comm = &comm;
   ::testing::InitGoogleTest(&argc, argv);
+  // The launcher must have given this process the ranks ctest asked for: an mpirun that does not
+  // match the MPI library starts N independent one-rank jobs, which would pass every test.
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]).starts_with("--expect-ranks=")) {
+      const int expected = std::stoi(argv[i] + 15);
+      if (comm.size() != expected) {
+        std::fprintf(stderr, "rank %d: the communicator has %d ranks, %d were launched\n",
+                     comm.rank(), comm.size(), expected);
+        return 1;
+      }
+    }
   // Only rank 0 prints test progress; every rank's failures still set its exit code.
   if (comm.rank() != 0) {
     auto& listeners = ::testing::UnitTest::GetInstance()->listeners();

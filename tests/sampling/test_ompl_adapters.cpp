@@ -119,7 +119,7 @@ TEST_P(ExactMotion, AgreesWithDenseSampling) {
   std::mt19937_64 rng(99 + d);
   std::uniform_real_distribution<double> u(0.0, extent);
   std::uniform_real_distribution<double> step(-3.0, 3.0);
-  int accepted = 0, rejected = 0;
+  int accepted = 0, rejected = 0, rejected_but_sampled_free = 0;
   for (int n = 0; n < 4000; ++n) {
     std::vector<double> a(d), b(d);
     for (int i = 0; i < d; ++i) {
@@ -146,6 +146,9 @@ TEST_P(ExactMotion, AgreesWithDenseSampling) {
                               << " b1=" << b[1] << " p0=" << p[0] << " p1=" << p[1];
     } else {
       ++rejected;
+      // Rejected although every sample was free: the segment clips a blocked cell between two
+      // samples (they are up to ~0.02 apart) or touches one at an edge or corner. Rare.
+      if (sampled_ok) ++rejected_but_sampled_free;
     }
     if (!sampled_ok) {
       ASSERT_FALSE(ok);
@@ -153,6 +156,7 @@ TEST_P(ExactMotion, AgreesWithDenseSampling) {
   }
   EXPECT_GT(accepted, 100);
   EXPECT_GT(rejected, 100);
+  EXPECT_LE(rejected_but_sampled_free, rejected / 20) << "the exact test rejects free segments";
 }
 
 INSTANTIATE_TEST_SUITE_P(Dims, ExactMotion, ::testing::Values(2, 3, 5, 8));
@@ -291,7 +295,7 @@ TEST(GridPlannerInOmpl, StartInsideAnObstacleIsReportedAsInvalidStart) {
   planner->getProblemDefinition()->clearStartStates();
   planner->getProblemDefinition()->addStartState(start);
   planner->clear();
-  EXPECT_NE(ss.getPlanner()->solve(1.0), ob::PlannerStatus::EXACT_SOLUTION);
+  EXPECT_EQ(ss.getPlanner()->solve(1.0), ob::PlannerStatus::INVALID_START);
 }
 
 TEST(OmplBenchmark, FmtSamplesFollowSeedEquationOne) {
@@ -332,21 +336,34 @@ TEST(OmplBenchmark, EveryRunIsRecordedValidatedAndScored) {
   const auto r = run_ompl_benchmark(o, "", "");
   ASSERT_EQ(r.rows.size(), 8u);
   ASSERT_GT(r.reference_quality, 0.0);
+  int solved = 0;
   for (const auto& row : r.rows) {
     SCOPED_TRACE(row.planner + " run " + std::to_string(row.run));
     EXPECT_EQ(row.dims, 3);
-    EXPECT_TRUE(row.path_valid);
     EXPECT_GT(row.collision_checks, 0u);
+    // The grid planners are complete on this solvable field: they must answer every run.
+    if (row.planner.starts_with("gridastar")) {
+      EXPECT_TRUE(row.solved);
+    }
     if (!row.solved) continue;
+    ++solved;
+    EXPECT_TRUE(row.path_valid);  // re-checked by the harness for solved runs only
+    // No path is shorter than the straight line (quality 1), whatever the planner.
     EXPECT_GE(row.quality_first, 1.0 - 1e-12);
+    EXPECT_GE(row.quality_final, 1.0 - 1e-12);
     EXPECT_LE(row.quality_final, row.quality_first + 1e-12);
-    EXPECT_GE(row.quality_final, r.reference_quality - 1e-12);
     EXPECT_LE(row.time_first_s, row.time_s + 1e-3);
     if (row.time_best_s >= 0) {
       EXPECT_TRUE(row.anytime);
       EXPECT_LE(row.quality_best, 0.5 * (row.quality_first + r.reference_quality) + 1e-12);
     }
   }
+  EXPECT_GE(solved, 4);
+  // The reference is the best final quality of a solved run.
+  double best = 1e300;
+  for (const auto& row : r.rows)
+    if (row.solved) best = std::min(best, row.quality_final);
+  EXPECT_DOUBLE_EQ(r.reference_quality, best);
   // The lattice path is the lattice optimum; the shortcut one is never longer.
   EXPECT_LE(r.rows[0].quality_final, r.rows[2].quality_final + 1e-12);
   const std::string csv = to_csv(r);

@@ -28,7 +28,9 @@ Instance random_instance(std::uint64_t seed, int d, bool full) {
   p.gog.seed = rng.next();
   p.gog.shift_v = static_cast<int>(rng.next_below(3));
   p.gog.shift_p = static_cast<int>(rng.next_below(5));
-  p.gog.density = 0.15 + 0.4 * rng.next_unit();
+  // One instance in four is dense enough that start and goal are often cut apart, so the
+  // no-path answer is checked against the oracle too.
+  p.gog.density = seed % 4 == 3 ? 0.6 + 0.2 * rng.next_unit() : 0.15 + 0.4 * rng.next_unit();
   p.connectivity = full ? Connectivity::full : Connectivity::seed_pairs;
   const GogField field(d, p.extent, p.gog);
   auto draw_free = [&] {
@@ -106,6 +108,22 @@ TEST_P(OracleAgreement, EveryAlgorithmMatchesTheOracle) {
     EXPECT_LE(wa.cost, w * best.cost + 1e-9);
     EXPECT_GE(wa.cost, best.cost - 1e-9);
   }
+}
+
+// The instances below, counted: the agreement test compares costs only where a path exists, so
+// most instances must have one (and some none, so the no-path branch runs too).
+TEST(OracleAgreementInstances, MostAreSolvableAndSomeAreNot) {
+  int reachable = 0, total = 0;
+  for (int d = 2; d < 7; ++d)
+    for (int trial = 0; trial < 12; ++trial) {
+      const Instance in = random_instance(1000 * d + trial, d, false);
+      const GogField field(d, in.problem.extent, in.problem.gog);
+      reachable += oracle::Lattice(field, false).bfs(in.start, in.goal).reachable;
+      ++total;
+    }
+  EXPECT_EQ(total, 60);
+  EXPECT_GE(reachable, 40);
+  EXPECT_LT(reachable, total);
 }
 
 // 5 dimensions x 12 trials on the seed rule, plus full connectivity for d <= 4.

@@ -5,6 +5,7 @@
 // take as long as the finished ones on average.
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -44,6 +45,52 @@ class Progress {
   std::size_t done_ = 0;
   bool tty_;
   bool enabled_ = false;
+  Stopwatch clock_;
+};
+
+// A long single run (one search): after `quiet_s` seconds, at most once a second, one line with
+// the states stored against the budget, the rate and the elapsed time. Shown under the same
+// rule as Progress (a terminal, or HPCPLAN_PROGRESS=1); silent runs cost one clock read per
+// call, and calls come every 65,536 expansions.
+class RunProgress {
+ public:
+  RunProgress(std::string what, std::uint64_t budget, double quiet_s = 2.0)
+      : what_(std::move(what)),
+        budget_(budget),
+        quiet_s_(quiet_s),
+        tty_(::isatty(STDERR_FILENO) == 1) {
+    const char* forced = std::getenv("HPCPLAN_PROGRESS");
+    enabled_ = tty_ || (forced != nullptr && std::string(forced) == "1");
+  }
+  ~RunProgress() {
+    if (shown_ && tty_) std::fputc('\n', stderr);
+  }
+  RunProgress(const RunProgress&) = delete;
+  RunProgress& operator=(const RunProgress&) = delete;
+
+  void update(std::uint64_t expanded, std::uint64_t stored) {
+    if (!enabled_) return;
+    const double t = clock_.seconds();
+    if (t < quiet_s_ || t < last_ + 1.0) return;
+    last_ = t;
+    shown_ = true;
+    std::fprintf(stderr,
+                 "%s%s: %.0f s, %.3gM states stored of %.3gM budget (%.1f%%), %.3gM expanded "
+                 "(%.3gM/s)%s",
+                 tty_ ? "\r" : "", what_.c_str(), t, stored / 1e6, budget_ / 1e6,
+                 budget_ ? 100.0 * stored / budget_ : 0.0, expanded / 1e6, expanded / 1e6 / t,
+                 tty_ ? "\033[K" : "\n");
+    std::fflush(stderr);
+  }
+
+ private:
+  std::string what_;
+  std::uint64_t budget_;
+  double quiet_s_;
+  bool tty_;
+  bool enabled_ = false;
+  bool shown_ = false;
+  double last_ = 0.0;
   Stopwatch clock_;
 };
 

@@ -39,12 +39,4 @@ struct LatticeCost {
   friend constexpr bool operator==(LatticeCost, LatticeCost) = default;
 };
 
-// Plain doubles serve graphs whose costs are not lattice-exact.
-inline double cost_value(double c) {
-  return c;
-}
-inline double cost_value(const LatticeCost& c) {
-  return c.value();
-}
-
 }  // namespace hpcplan

@@ -2,6 +2,7 @@
 // The grid planner's implementation, as templates over the visited-map policy so benchmarks
 // can run the identical planner with another hash map. Users call solve_grid().
 
+#include "hpcplan/core/progress.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/graph/lattice_graph.hpp"
 #include "hpcplan/graph/lattice_heuristic.hpp"
@@ -50,7 +51,11 @@ void run_search(const GogField& field, const GridProblem& problem, const GridSea
   LatticeGraph<W> graph(field, problem.connectivity);
   const auto start = graph.pack(report.start);
   const auto goal = graph.pack(report.goal);
-  const auto eo = engine_options(o, report.weight, report.max_states);
+  auto eo = engine_options(o, report.weight, report.max_states);
+  RunProgress progress("hpcplan grid " + report.algorithm, report.max_states);
+  eo.progress = [&progress](std::uint64_t expanded, std::uint64_t stored) {
+    progress.update(expanded, stored);
+  };
 
   const auto r = with_heuristic<W>(o, problem, graph.layout(), report.goal, [&](const auto& h) {
     return search::best_first_search<MapPolicy>(graph, start, goal, h, eo);

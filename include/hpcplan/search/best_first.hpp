@@ -85,6 +85,8 @@ Result<typename G::State> best_first_search(const G& graph, const typename G::St
     if (!is_fifo && x == goal) return finish(Status::solved, true);
     ++counters.expanded;
     if (const auto why = stop.poll()) return finish(*why, false);
+    if ((counters.expanded & 0xffff) == 0 && options.progress)
+      options.progress(counters.expanded, store.stored());
 
     bool goal_generated = false;
     bool over_budget = false;

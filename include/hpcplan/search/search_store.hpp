@@ -7,6 +7,7 @@
 #include <concepts>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <string>
 #include <tuple>
@@ -18,7 +19,7 @@
 #include "hpcplan/core/huge_page_allocator.hpp"
 #include "hpcplan/core/splitmix64.hpp"
 #include "hpcplan/core/stop.hpp"
-#include "hpcplan/graph/lattice_cost.hpp"
+#include "hpcplan/search/cost_value.hpp"
 #include "hpcplan/search/visited_map.hpp"
 
 namespace hpcplan::search {
@@ -48,6 +49,9 @@ struct Options {
   bool reopen_closed = true;     // false for serial weighted A*
   std::uint64_t max_states = 0;  // visited-map size limit; 0 = none
   Stop stop;                     // deadline and/or cancellation; default: never
+  // Called every 2^16 expansions with (expanded, stored states): the caller decides whether and
+  // how to show it (the engine does no I/O). Empty: nothing is called.
+  std::function<void(std::uint64_t, std::uint64_t)> progress;
   std::uint64_t seed = 1;        // Frontier::random only
   std::uint64_t dense_keys = 0;  // map policies with a dense range: keys below this bound
 };

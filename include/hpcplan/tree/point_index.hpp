@@ -15,9 +15,29 @@
 
 namespace hpcplan::tree {
 
+// nanoflann 1.5 renamed SearchParams to SearchParameters and made radius results ResultItem
+// (with the same first/second members) instead of std::pair; Debian 12 ships 1.4.2. This is the
+// one place that knows.
+namespace nanoflann_compat {
+#if NANOFLANN_VERSION >= 0x150
+using SearchParams = nanoflann::SearchParameters;
+template <class Index, class Distance>
+using Match = nanoflann::ResultItem<Index, Distance>;
+#else
+using SearchParams = nanoflann::SearchParams;
+template <class Index, class Distance>
+using Match = std::pair<Index, Distance>;
+#endif
+}  // namespace nanoflann_compat
+
+// Threads: one index belongs to one planning run (queries are const but not documented as
+// safe for concurrent use by nanoflann).
 template <int D>
 class PointIndex {
  public:
+  // (index, squared distance) pairs from within(): `.first` and `.second` on every version.
+  using Matches = std::vector<nanoflann_compat::Match<std::size_t, double>>;
+
   // `points` is the caller's storage; call added() after each push_back.
   explicit PointIndex(const std::vector<world::Vec<D>>& points)
       : source_{&points}, tree_(D, source_, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {}
@@ -31,15 +51,14 @@ class PointIndex {
     double d2 = 0.0;
     nanoflann::KNNResultSet<double, std::size_t> result(1);
     result.init(&index, &d2);
-    tree_.findNeighbors(result, q.data(), nanoflann::SearchParams());
+    tree_.findNeighbors(result, q.data(), nanoflann_compat::SearchParams());
     return index;
   }
 
   // Every point within `radius` of q, as (index, squared distance).
-  void within(const world::Vec<D>& q, double radius,
-              std::vector<std::pair<std::size_t, double>>& out) const {
+  void within(const world::Vec<D>& q, double radius, Matches& out) const {
     nanoflann::RadiusResultSet<double, std::size_t> result(radius * radius, out);
-    tree_.findNeighbors(result, q.data(), nanoflann::SearchParams());
+    tree_.findNeighbors(result, q.data(), nanoflann_compat::SearchParams());
   }
 
  private:

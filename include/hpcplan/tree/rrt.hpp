@@ -19,12 +19,12 @@ TreeResult<W::kDim> rrt(const W& world, const world::Vec<W::kDim>& start,
   Tree<D> tree;
   tree.add_root(start);
   Sampler<D> sampler(world.bounds(), start, goal, o.seed);
-  auto done = [&](search::Status status) {
+  auto done = [&](Status status) {
     r.status = status;
     r.tree_size = tree.points.size();
     r.collision_checks = CheckCounter::this_thread() - checks0;
     r.time_ms = clock.milliseconds();
-    if (status == search::Status::solved) {
+    if (status == Status::solved) {
       r.path = tree.branch(static_cast<std::uint32_t>(tree.points.size() - 1));
       r.length = world::polyline_length<D>(r.path);
       r.first_time_ms = r.time_ms;
@@ -34,11 +34,11 @@ TreeResult<W::kDim> rrt(const W& world, const world::Vec<W::kDim>& start,
   };
   if (world.segment_free(start, goal)) {
     tree.add(goal, 0);
-    return done(search::Status::solved);
+    return done(Status::solved);
   }
   for (;;) {
     if (const auto why = stop.poll()) return done(*why);
-    if (o.max_samples && r.samples >= o.max_samples) return done(search::Status::no_path);
+    if (o.max_samples && r.samples >= o.max_samples) return done(Status::no_path);
     ++r.samples;
     const world::Vec<D> target = sampler.unit() < o.goal_bias ? goal : sampler.uniform();
     const auto near = static_cast<std::uint32_t>(tree.index.nearest(target));
@@ -47,7 +47,7 @@ TreeResult<W::kDim> rrt(const W& world, const world::Vec<W::kDim>& start,
     const std::uint32_t added = tree.add(q, near);
     if (world::distance<D>(q, goal) <= step && world.segment_free(q, goal)) {
       if (!(q == goal)) tree.add(goal, added);
-      return done(search::Status::solved);
+      return done(Status::solved);
     }
   }
 }

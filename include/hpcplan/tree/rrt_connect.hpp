@@ -22,11 +22,11 @@ TreeResult<W::kDim> rrt_connect(const W& world, const world::Vec<W::kDim>& start
   from_goal.add_root(goal);
   Sampler<D> sampler(world.bounds(), start, goal, o.seed);
   TreeResult<D> r;
-  auto done = [&](search::Status status, std::uint32_t a = 0, std::uint32_t b = 0) {
+  auto done = [&](Status status, std::uint32_t a = 0, std::uint32_t b = 0) {
     r.status = status;
     r.tree_size = from_start.points.size() + from_goal.points.size();
     r.collision_checks = CheckCounter::this_thread() - checks0;
-    if (status == search::Status::solved) {
+    if (status == Status::solved) {
       r.path = from_start.branch(a);
       auto back = from_goal.branch(b);
       // The joining vertex may be the same point in both trees.
@@ -36,16 +36,16 @@ TreeResult<W::kDim> rrt_connect(const W& world, const world::Vec<W::kDim>& start
       r.length = world::polyline_length<D>(r.path);
     }
     r.time_ms = clock.milliseconds();
-    if (status == search::Status::solved) r.first_time_ms = r.time_ms, r.first_length = r.length;
+    if (status == Status::solved) r.first_time_ms = r.time_ms, r.first_length = r.length;
     return r;
   };
-  if (world.segment_free(start, goal)) return done(search::Status::solved, 0, 0);
+  if (world.segment_free(start, goal)) return done(Status::solved, 0, 0);
 
   Tree<D>* a = &from_start;
   Tree<D>* b = &from_goal;
   for (;;) {
     if (const auto why = stop.poll()) return done(*why);
-    if (o.max_samples && r.samples >= o.max_samples) return done(search::Status::no_path);
+    if (o.max_samples && r.samples >= o.max_samples) return done(Status::no_path);
     ++r.samples;
     const world::Vec<D> target = sampler.uniform();
     const auto near = static_cast<std::uint32_t>(a->index.nearest(target));
@@ -59,9 +59,9 @@ TreeResult<W::kDim> rrt_connect(const W& world, const world::Vec<W::kDim>& start
         if (!world.segment_free(b->points[nb], next)) break;
         if (next == q) {
           // Joined: the start tree's vertex and the goal tree's vertex meet at the same point.
-          if (a == &from_start) return done(search::Status::solved, qa, nb);
+          if (a == &from_start) return done(Status::solved, qa, nb);
           const std::uint32_t in_goal_tree = qa;
-          return done(search::Status::solved, nb, in_goal_tree);
+          return done(Status::solved, nb, in_goal_tree);
         }
         nb = b->add(next, nb);
       }

@@ -56,10 +56,10 @@ TreeResult<W::kDim> rrt_star(const W& world, const world::Vec<W::kDim>& start,
   std::uint32_t goal_vertex = UINT32_MAX;
   if (world.segment_free(start, goal)) goal_vertex = add(goal, 0, world::distance<D>(start, goal));
   Sampler<D> sampler(world.bounds(), start, goal, o.seed);
-  std::vector<std::pair<std::size_t, double>> near;
+  typename PointIndex<D>::Matches near;
   auto solved = [&] { return goal_vertex != UINT32_MAX; };
 
-  search::Status status = search::Status::timeout;
+  Status status = Status::timeout;
   const bool straight = solved();  // the straight segment is optimal: nothing to refine
   while (!straight && !(solved() && o.stop_at_first)) {
     if (const auto why = stop.poll()) {
@@ -67,7 +67,7 @@ TreeResult<W::kDim> rrt_star(const W& world, const world::Vec<W::kDim>& start,
       break;
     }
     if (o.max_samples && r.samples >= o.max_samples) {
-      status = search::Status::no_path;
+      status = Status::no_path;
       break;
     }
     ++r.samples;
@@ -112,7 +112,7 @@ TreeResult<W::kDim> rrt_star(const W& world, const world::Vec<W::kDim>& start,
     }
   }
   if (solved()) {
-    status = search::Status::solved;
+    status = Status::solved;
     r.path = tree.branch(goal_vertex);
     r.length = world::polyline_length<D>(r.path);
     if (r.first_time_ms < 0) r.first_time_ms = clock.milliseconds(), r.first_length = r.length;

@@ -12,9 +12,9 @@
 #include "hpcplan/core/check_counter.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/splitmix64.hpp"
+#include "hpcplan/core/status.hpp"
 #include "hpcplan/core/stop.hpp"
 #include "hpcplan/core/stopwatch.hpp"
-#include "hpcplan/search/search_result.hpp"
 #include "hpcplan/tree/point_index.hpp"
 #include "hpcplan/world/point.hpp"
 
@@ -33,7 +33,7 @@ struct TreeOptions {
 
 template <int D>
 struct TreeResult {
-  search::Status status = search::Status::no_path;
+  Status status = Status::no_path;
   std::vector<world::Vec<D>> path;  // start..goal, exactly
   double length = 0.0;
   std::uint64_t tree_size = 0;  // vertices in the tree(s)
