@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "hpcplan/core/atomic_file.hpp"
 #include "hpcplan/core/error.hpp"
-#include "hpcplan/io/atomic_file.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
 
 namespace {

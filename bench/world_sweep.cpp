@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "hpcplan/core/atomic_file.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/progress.hpp"
-#include "hpcplan/io/atomic_file.hpp"
+#include "hpcplan/env/box_map_io.hpp"
+#include "hpcplan/env/sphere_world.hpp"
 #include "hpcplan/io/path_csv.hpp"
 #include "hpcplan/plan/world_planner.hpp"
-#include "hpcplan/world/box_map_io.hpp"
-#include "hpcplan/world/sphere_world.hpp"
 
 namespace {
 
@@ -107,9 +107,9 @@ int main(int argc, char** argv) {
     for (const std::string& file : maps) {
       const std::string name = std::filesystem::path(file).stem().string();
       if (kind == "map3d")
-        sweep(name, world::load_box_map(file), configs, runs, csv, paths_dir, progress);
+        sweep(name, env::load_box_map(file), configs, runs, csv, paths_dir, progress);
       else
-        sweep(name, world::load_sphere_map(file), configs, runs, csv, paths_dir, progress);
+        sweep(name, env::load_sphere_map(file), configs, runs, csv, paths_dir, progress);
     }
     write_file_atomically(out, csv);
   } catch (const std::exception& e) {

@@ -14,9 +14,9 @@
 
 #include "hpcplan/core/splitmix64.hpp"
 #include "hpcplan/dist/grid_planner_mpi.hpp"
-#include "hpcplan/dist/ownership.hpp"
-#include "hpcplan/dist/rank_simulation.hpp"
 #include "hpcplan/mpi/communicator.hpp"
+#include "hpcplan/partition/ownership.hpp"
+#include "hpcplan/partition/rank_simulation.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
 
 namespace {
@@ -203,7 +203,7 @@ TEST(Distributed, RankSimulatorPredictsTheRealSplit) {
   GridSearchOptions o;
   o.algorithm = GridAlgorithm::dijkstra;
   for (int k : {0, 1}) {
-    const dist::RankSimulation sim = dist::simulate_ranks(p, o, {p_ranks}, {k});
+    const partition::RankSimulation sim = partition::simulate_ranks(p, o, {p_ranks}, {k});
     dist::DistGridOptions d;
     d.scheme = dist::Scheme::bulk_sync;
     d.coarsen_shift = k;
@@ -225,7 +225,7 @@ TEST(Distributed, RankSimulatorPredictsTheRealSplit) {
     EXPECT_NEAR(static_cast<double>(remote), static_cast<double>(s.remote_successors),
                 0.03 * static_cast<double>(s.remote_successors) + 10)
         << "k " << k;
-    EXPECT_NEAR(dist::deviation_percent(s.expanded), s.expansion_deviation_percent, 1e-12);
+    EXPECT_NEAR(partition::deviation_percent(s.expanded), s.expansion_deviation_percent, 1e-12);
   }
 }
 
@@ -250,7 +250,7 @@ TEST(Distributed, StartEqualsGoal) {
 
 TEST(Ownership, SpreadsStatesEvenlyAndCoarseningKeepsCellsTogether) {
   const KeyLayout layout(3, 64);
-  const dist::Ownership<1> fine(layout, 4, 0), coarse(layout, 4, 2);
+  const partition::Ownership<1> fine(layout, 4, 0), coarse(layout, 4, 2);
   std::map<int, int> counts;
   int same_cell_same_owner = 0, cells_checked = 0;
   for (int x = 0; x < 64; ++x)
@@ -266,7 +266,7 @@ TEST(Ownership, SpreadsStatesEvenlyAndCoarseningKeepsCellsTogether) {
   ASSERT_EQ(counts.size(), 4u);
   for (const auto& [owner, n] : counts) EXPECT_NEAR(n, 65536, 65536 * 0.02) << owner;
   EXPECT_EQ(same_cell_same_owner, cells_checked);
-  const dist::Ownership<1> one(layout, 1, 0);
+  const partition::Ownership<1> one(layout, 1, 0);
   EXPECT_EQ(one(layout.pack<1>(std::vector<int>{5, 6, 7})), 0);
 }
 

@@ -16,11 +16,11 @@
 #include <ompl/util/Console.h>
 
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/plan/grid_astar_planner.hpp"
 #include "hpcplan/plan/grid_problem.hpp"
+#include "hpcplan/plan/ompl_benchmark.hpp"
 #include "hpcplan/sampling/gog_motion_validator.hpp"
 #include "hpcplan/sampling/gog_world.hpp"
-#include "hpcplan/sampling/grid_astar_planner.hpp"
-#include "hpcplan/sampling/ompl_benchmark.hpp"
 #include "hpcplan/sampling/path_tightening.hpp"
 
 namespace ob = ompl::base;
@@ -28,6 +28,12 @@ namespace og = ompl::geometric;
 
 namespace hpcplan::sampling {
 namespace {
+
+// The grid planner as an OMPL planner and the benchmark harness live one layer up, in plan.
+using plan::fmt_samples;
+using plan::GridAStarPlanner;
+using plan::OmplBenchOptions;
+using plan::run_ompl_benchmark;
 
 GogWorld world_for(int dims, int extent, double resolution = 0.1, std::uint64_t seed = 1) {
   GogParams p;

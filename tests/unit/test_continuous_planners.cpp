@@ -5,6 +5,9 @@
 
 #include <string>
 
+#include "hpcplan/env/box_map_io.hpp"
+#include "hpcplan/env/path_shortcut.hpp"
+#include "hpcplan/env/sphere_world.hpp"
 #include "hpcplan/graph/continuous_grid.hpp"
 #include "hpcplan/search/best_first.hpp"
 #include "hpcplan/search/dense_visited_map.hpp"
@@ -12,24 +15,21 @@
 #include "hpcplan/tree/rrt.hpp"
 #include "hpcplan/tree/rrt_connect.hpp"
 #include "hpcplan/tree/rrt_star.hpp"
-#include "hpcplan/world/box_map_io.hpp"
-#include "hpcplan/world/path_shortcut.hpp"
-#include "hpcplan/world/sphere_world.hpp"
 #include "support/path_checks.hpp"
 
 namespace hpcplan {
 namespace {
 
+using env::BoxMap;
+using env::BoxWorld;
+using env::Vec;
 using test_support::expect_valid;
-using world::BoxMap;
-using world::BoxWorld;
-using world::Vec;
 using Grid3 = ContinuousGrid<BoxWorld>;
 
 const char* kMaps[] = {"single_box", "maze", "thin_walls", "tower", "window", "forest"};
 
 BoxMap shipped(const std::string& name) {
-  return world::load_box_map(std::string(HPCPLAN_MAPS_DIR) + "/" + name + ".txt");
+  return env::load_box_map(std::string(HPCPLAN_MAPS_DIR) + "/" + name + ".txt");
 }
 
 struct GridRun {
@@ -80,8 +80,7 @@ TEST(ContinuousGrid, AStarCostEqualsDijkstraAndWeightedStaysInBound) {
 
 TEST(ContinuousGrid, ThinWallIsNeverCrossedAtAnyResolution) {
   // A 1 cm wall splits the world completely: every resolution must report no path.
-  const BoxWorld sealed({{0, 0, 0}, {10, 10, 10}},
-                        {world::Block{{{4.995, 0, 0}, {5.005, 10, 10}}}});
+  const BoxWorld sealed({{0, 0, 0}, {10, 10, 10}}, {env::Block{{{4.995, 0, 0}, {5.005, 10, 10}}}});
   for (double res : {0.1, 0.3, 0.5, 0.7, 1.0, 2.5, 3.3}) {
     const Grid3 g(sealed, {1, 5, 5}, {9, 5, 5}, {res});
     EXPECT_EQ(grid_search(g, LatticeToGoal<Grid3>{&g}, {}).result.status, search::Status::no_path)
@@ -135,12 +134,12 @@ TEST(TreePlanners, SolveEveryShippedMapWithValidPaths) {
       const auto c = tree::rrt_star(m.world, *m.start, *m.goal, o);
       ASSERT_EQ(c.status, search::Status::solved) << name << " seed " << seed;
       expect_valid(m.world, c.path, *m.start, *m.goal, std::string(name) + " rrtstar");
-      EXPECT_NEAR(c.length, world::polyline_length<3>(c.path), 1e-9);
+      EXPECT_NEAR(c.length, env::polyline_length<3>(c.path), 1e-9);
       EXPECT_LE(c.length, c.first_length + 1e-9);  // refinement never lengthens
       // Shortcutting keeps the ends and validity and never lengthens.
-      const auto s = world::tighten_path(m.world, world::shortcut_path(m.world, a.path));
+      const auto s = env::tighten_path(m.world, env::shortcut_path(m.world, a.path));
       expect_valid(m.world, s, *m.start, *m.goal, std::string(name) + " shortcut");
-      EXPECT_LE(world::polyline_length<3>(s), a.length + 1e-9);
+      EXPECT_LE(env::polyline_length<3>(s), a.length + 1e-9);
     }
   }
 }
@@ -159,7 +158,7 @@ TEST(TreePlanners, RrtStarApproachesTheAnyAngleOptimumOnOneBox) {
 }
 
 TEST(TreePlanners, UnreachableGoalEndsWithoutAPath) {
-  const BoxWorld sealed({{0, 0, 0}, {10, 10, 10}}, {world::Block{{{4.9, 0, 0}, {5.1, 10, 10}}}});
+  const BoxWorld sealed({{0, 0, 0}, {10, 10, 10}}, {env::Block{{{4.9, 0, 0}, {5.1, 10, 10}}}});
   tree::TreeOptions o;
   o.max_samples = 3000;
   EXPECT_NE(tree::rrt(sealed, {1, 5, 5}, {9, 5, 5}, o).status, search::Status::solved);
@@ -169,8 +168,8 @@ TEST(TreePlanners, UnreachableGoalEndsWithoutAPath) {
 }
 
 TEST(SphereWorld, GridAStarEqualsDijkstraAndTheHybridReturnsValidPaths) {
-  const auto m = world::load_sphere_map(std::string(HPCPLAN_MAPS_DIR) + "/sphere_dense.txt");
-  using Grid2 = ContinuousGrid<world::SphereWorld>;
+  const auto m = env::load_sphere_map(std::string(HPCPLAN_MAPS_DIR) + "/sphere_dense.txt");
+  using Grid2 = ContinuousGrid<env::SphereWorld>;
   const Grid2 g(m.world, *m.start, *m.goal, {0.25});
   const auto d =
       search::best_first_search(g, Grid2::kStart, Grid2::kGoal, search::ZeroHeuristic{}, {});

@@ -12,19 +12,19 @@
 #include <vector>
 
 #include "hpcplan/core/stop.hpp"
+#include "hpcplan/env/box_map_io.hpp"
 #include "hpcplan/graph/continuous_grid.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
 #include "hpcplan/search/best_first.hpp"
 #include "hpcplan/search/dense_visited_map.hpp"
 #include "hpcplan/tree/rrt_star.hpp"
-#include "hpcplan/world/box_map_io.hpp"
 #include "support/path_checks.hpp"
 
 namespace hpcplan {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using Grid3 = ContinuousGrid<world::BoxWorld>;
+using Grid3 = ContinuousGrid<env::BoxWorld>;
 
 double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
@@ -83,8 +83,8 @@ TEST(Stop, AnotherThreadCancelsAGridSearchWithinMilliseconds) {
 }
 
 TEST(Stop, TwoPlannersShareOneWorldWhileAThirdCancels) {
-  const auto map = world::load_box_map(std::string(HPCPLAN_MAPS_DIR) + "/maze.txt");
-  const world::BoxWorld& w = map.world;
+  const auto map = env::load_box_map(std::string(HPCPLAN_MAPS_DIR) + "/maze.txt");
+  const env::BoxWorld& w = map.world;
 
   // The reference, alone.
   const auto astar = [&](double resolution, Stop stop) {
@@ -94,7 +94,7 @@ TEST(Stop, TwoPlannersShareOneWorldWhileAThirdCancels) {
     o.stop = stop;
     auto r = search::best_first_search<search::DenseThenHashPolicy>(g, Grid3::kStart, Grid3::kGoal,
                                                                     LatticeToGoal<Grid3>{&g}, o);
-    std::vector<world::Vec<3>> path;
+    std::vector<env::Vec<3>> path;
     for (auto s : r.path) path.push_back(g.point(s));
     return std::pair{r, path};
   };

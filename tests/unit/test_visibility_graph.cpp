@@ -9,27 +9,27 @@
 #include <string>
 
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/env/bend_points.hpp"
+#include "hpcplan/env/box_map_io.hpp"
+#include "hpcplan/env/path_shortcut.hpp"
+#include "hpcplan/env/sphere_world.hpp"
 #include "hpcplan/graph/continuous_grid.hpp"
 #include "hpcplan/graph/visibility_graph.hpp"
 #include "hpcplan/search/best_first.hpp"
 #include "hpcplan/search/dense_visited_map.hpp"
 #include "hpcplan/search/lazy_theta_star.hpp"
-#include "hpcplan/world/bend_points.hpp"
-#include "hpcplan/world/box_map_io.hpp"
-#include "hpcplan/world/path_shortcut.hpp"
-#include "hpcplan/world/sphere_world.hpp"
 #include "support/path_checks.hpp"
 
 namespace hpcplan {
 namespace {
 
+using env::BoxWorld;
+using env::Vec;
 using test_support::expect_valid;
-using world::BoxWorld;
-using world::Vec;
 using VisBox = VisibilityGraph<BoxWorld>;
 
-world::BoxMap shipped(const std::string& name) {
-  return world::load_box_map(std::string(HPCPLAN_MAPS_DIR) + "/" + name + ".txt");
+env::BoxMap shipped(const std::string& name) {
+  return env::load_box_map(std::string(HPCPLAN_MAPS_DIR) + "/" + name + ".txt");
 }
 
 // The same graph with only the two-argument successor walk: the engine cannot filter edges
@@ -68,9 +68,9 @@ search::Result<typename G::State> shortest(const G& g) {
 }
 
 TEST(BendPoints, CornersAndEdgeSamplesLiftedOffOneBox) {
-  const BoxWorld w({{0, 0, 0}, {10, 10, 10}}, {world::Block{{{4, 4, 4}, {6, 6, 6}}}});
+  const BoxWorld w({{0, 0, 0}, {10, 10, 10}}, {env::Block{{{4, 4, 4}, {6, 6, 6}}}});
   const double lift = 1e-6;
-  const auto bends = world::bend_points(w, 0.5, lift);
+  const auto bends = env::bend_points(w, 0.5, lift);
   ASSERT_EQ(bends.size(), 8u + 12u * 3u);  // corners, and 3 inner samples on each 2 m edge
   int corners = 0;
   for (const auto& b : bends) {
@@ -95,8 +95,8 @@ TEST(BendPoints, NoneInsideNeighboursOrOutsideTheBoundary) {
   // B's sides in y, so they stay). Left: A has 4 top corners, 3 top-edge and 4 vertical-edge
   // samples; B has 4 top corners, 4 top-edge and 4 x 3 vertical-edge samples.
   const BoxWorld w({{0, 0, 0}, {10, 10, 10}},
-                   {world::Block{{{2, 2, 0}, {4, 4, 2}}}, world::Block{{{4, 2, 0}, {6, 4, 4}}}});
-  const auto bends = world::bend_points(w, 1.0, 1e-6);
+                   {env::Block{{{2, 2, 0}, {4, 4, 2}}}, env::Block{{{4, 2, 0}, {6, 4, 4}}}});
+  const auto bends = env::bend_points(w, 1.0, 1e-6);
   EXPECT_EQ(bends.size(), 11u + 20u);
   for (const auto& b : bends) {
     EXPECT_TRUE(w.point_free(b.point));
@@ -105,7 +105,7 @@ TEST(BendPoints, NoneInsideNeighboursOrOutsideTheBoundary) {
 }
 
 TEST(BendPoints, TangencyRejectsDirectionsIntoOrStraightOutOfTheObstacle) {
-  world::BendPoint<3> edge;  // an edge along z, the obstacle towards -x and -y
+  env::BendPoint<3> edge;  // an edge along z, the obstacle towards -x and -y
   edge.normals[0] = {1, 0, 0};
   edge.normals[1] = {0, 1, 0};
   edge.normal_count = 2;
@@ -121,7 +121,7 @@ TEST(BendPoints, TangencyRejectsDirectionsIntoOrStraightOutOfTheObstacle) {
 TEST(VisibilityGraph, FilteredAStarEqualsUnfilteredDijkstraOnShippedMaps) {
   for (const char* name : {"single_box", "maze", "thin_walls", "tower", "window"}) {
     const auto m = shipped(name);
-    const VisBox g(m.world, *m.start, *m.goal, world::bend_points(m.world, 0.5, 1e-5));
+    const VisBox g(m.world, *m.start, *m.goal, env::bend_points(m.world, 0.5, 1e-5));
     const auto astar = shortest(g);
     const Unfiltered<VisBox> plain{g};
     const auto dijkstra = search::best_first_search(plain, VisBox::kStart, VisBox::kGoal,
@@ -138,7 +138,7 @@ TEST(VisibilityGraph, FilteredAStarEqualsUnfilteredDijkstraOnShippedMaps) {
 // footprint, lifted: length sqrt(s^2 + dz^2), where s is the 2D length (unfold the vertical
 // faces it follows into a plane).
 struct WallCase {
-  BoxWorld world{{{0, 0, 0}, {10, 10, 10}}, {world::Block{{{4, 0, 0}, {6, 6, 10}}}}};
+  BoxWorld world{{{0, 0, 0}, {10, 10, 10}}, {env::Block{{{4, 0, 0}, {6, 6, 10}}}}};
   Vec<3> start{2, 2, 1}, goal{8, 2, 9};
   double optimum() const {
     const double s = 2 * std::hypot(2.0, 4.0) + 2.0;
@@ -149,7 +149,7 @@ struct WallCase {
 TEST(VisibilityGraph, TightenedPathMatchesTheUnfoldedOptimumAroundAWall) {
   const WallCase c;
   for (double spacing : {2.0, 0.7, 0.25}) {
-    const VisBox g(c.world, c.start, c.goal, world::bend_points(c.world, spacing, 1e-6));
+    const VisBox g(c.world, c.start, c.goal, env::bend_points(c.world, spacing, 1e-6));
     const auto r = shortest(g);
     ASSERT_EQ(r.status, search::Status::solved) << spacing;
     const auto raw = points(g, r.path);
@@ -157,9 +157,9 @@ TEST(VisibilityGraph, TightenedPathMatchesTheUnfoldedOptimumAroundAWall) {
     // No free path is shorter than the optimum; sampled bends cost at most a little more.
     EXPECT_GE(r.cost, c.optimum() - 1e-9) << spacing;
     EXPECT_LE(r.cost, c.optimum() * 1.02) << spacing;
-    const auto tight = world::tighten_path(c.world, raw);
+    const auto tight = env::tighten_path(c.world, raw);
     expect_valid(c.world, tight, c.start, c.goal, "tightened");
-    const double length = world::polyline_length<3>(tight);
+    const double length = env::polyline_length<3>(tight);
     EXPECT_GE(length, c.optimum() - 1e-9) << spacing;
     EXPECT_LE(length, c.optimum() * (1 + 1e-5)) << spacing;
   }
@@ -170,45 +170,45 @@ TEST(TightenPath, SlidesBendsAlongEdgesToTheOptimum) {
   const WallCase c;
   const std::vector<Vec<3>> path{c.start, {3.9, 6.3, 8.0}, {6.1, 6.3, 2.0}, c.goal};
   expect_valid(c.world, path, c.start, c.goal, "input");
-  const auto tight = world::tighten_path(c.world, path);
+  const auto tight = env::tighten_path(c.world, path);
   expect_valid(c.world, tight, c.start, c.goal, "tightened");
   // Bends far from their edges converge slowly at the end (coordinate-wise slides): within
   // 1e-4 of the optimum from an input 1.4% longer.
-  EXPECT_GT(world::polyline_length<3>(path), c.optimum() * 1.01);
-  EXPECT_LE(world::polyline_length<3>(tight), c.optimum() * (1 + 1e-4))
-      << std::setprecision(12) << world::polyline_length<3>(tight) << " vs " << c.optimum();
-  EXPECT_GE(world::polyline_length<3>(tight), c.optimum() - 1e-9);
+  EXPECT_GT(env::polyline_length<3>(path), c.optimum() * 1.01);
+  EXPECT_LE(env::polyline_length<3>(tight), c.optimum() * (1 + 1e-4))
+      << std::setprecision(12) << env::polyline_length<3>(tight) << " vs " << c.optimum();
+  EXPECT_GE(env::polyline_length<3>(tight), c.optimum() - 1e-9);
 }
 
 TEST(VisibilityGraph, TightenedPathMatchesTangentsAndArcAroundADisc) {
-  const world::SphereWorld w({{0, 0}, 10.0}, {world::Circle{{0, 0}, 2.0}});
+  const env::SphereWorld w({{0, 0}, 10.0}, {env::Circle{{0, 0}, 2.0}});
   const Vec<2> start{-5, 0}, goal{5, 0};
   // Two tangents of length sqrt(5^2 - 2^2) and the arc between their touching points.
   const double optimum = 2 * std::sqrt(21.0) + 2.0 * (std::numbers::pi - 2 * std::acos(0.4));
-  using VisDisc = VisibilityGraph<world::SphereWorld>;
+  using VisDisc = VisibilityGraph<env::SphereWorld>;
   for (double spacing : {0.5, 0.1}) {
-    const VisDisc g(w, start, goal, world::bend_points(w, spacing, 1e-6));
+    const VisDisc g(w, start, goal, env::bend_points(w, spacing, 1e-6));
     const auto r = shortest(g);
     ASSERT_EQ(r.status, search::Status::solved);
     EXPECT_GE(r.cost, optimum - 1e-9);
     EXPECT_LE(r.cost, optimum * 1.01) << spacing;
-    const auto tight = world::tighten_path(w, points(g, r.path));
+    const auto tight = env::tighten_path(w, points(g, r.path));
     expect_valid(w, tight, start, goal, "disc");
-    const double length = world::polyline_length<2>(tight);
+    const double length = env::polyline_length<2>(tight);
     EXPECT_GE(length, optimum - 1e-9);
     EXPECT_LE(length, optimum * 1.002) << spacing;
   }
 }
 
 TEST(VisibilityGraph, SealedGoalHasNoPathAndBadSpacingIsRejected) {
-  const BoxWorld sealed({{0, 0, 0}, {10, 10, 10}}, {world::Block{{{4.99, 0, 0}, {5.01, 10, 10}}}});
-  const VisBox g(sealed, {1, 5, 5}, {9, 5, 5}, world::bend_points(sealed, 0.5, 1e-6));
+  const BoxWorld sealed({{0, 0, 0}, {10, 10, 10}}, {env::Block{{{4.99, 0, 0}, {5.01, 10, 10}}}});
+  const VisBox g(sealed, {1, 5, 5}, {9, 5, 5}, env::bend_points(sealed, 0.5, 1e-6));
   const auto r = shortest(g);
   EXPECT_EQ(r.status, search::Status::no_path);
   EXPECT_TRUE(r.path.empty());
-  EXPECT_THROW(world::bend_points(sealed, -1.0, 1e-6), InputError);
-  EXPECT_THROW(world::bend_points(sealed, std::nan(""), 1e-6), InputError);
-  EXPECT_THROW(world::bend_points(sealed, 0.5, 0.0), InputError);
+  EXPECT_THROW(env::bend_points(sealed, -1.0, 1e-6), InputError);
+  EXPECT_THROW(env::bend_points(sealed, std::nan(""), 1e-6), InputError);
+  EXPECT_THROW(env::bend_points(sealed, 0.5, 0.0), InputError);
 }
 
 TEST(VisibilityGraph, NoLongerThanTightenedThetaStarOnShippedMaps) {
@@ -217,7 +217,7 @@ TEST(VisibilityGraph, NoLongerThanTightenedThetaStarOnShippedMaps) {
   using Grid3 = ContinuousGrid<BoxWorld>;
   for (const char* name : {"single_box", "maze", "thin_walls", "tower", "window", "forest"}) {
     const auto m = shipped(name);
-    const VisBox g(m.world, *m.start, *m.goal, world::bend_points(m.world, 0.5, 1e-5));
+    const VisBox g(m.world, *m.start, *m.goal, env::bend_points(m.world, 0.5, 1e-5));
     const auto vis = shortest(g);
     const Grid3 grid(m.world, *m.start, *m.goal, {0.25});
     search::Options o;
@@ -227,12 +227,12 @@ TEST(VisibilityGraph, NoLongerThanTightenedThetaStarOnShippedMaps) {
     ASSERT_EQ(vis.status, search::Status::solved) << name;
     ASSERT_EQ(theta.status, search::Status::solved) << name;
     auto polish = [&](const auto& path) {
-      return world::tighten_path(m.world, world::shortcut_path(m.world, path));
+      return env::tighten_path(m.world, env::shortcut_path(m.world, path));
     };
     const auto vis_path = polish(points(g, vis.path));
     const auto theta_path = polish(points(grid, theta.path));
     expect_valid(m.world, vis_path, *m.start, *m.goal, name);
-    EXPECT_LE(world::polyline_length<3>(vis_path), world::polyline_length<3>(theta_path) * 1.001)
+    EXPECT_LE(env::polyline_length<3>(vis_path), env::polyline_length<3>(theta_path) * 1.001)
         << name;
   }
 }

@@ -6,11 +6,11 @@
 #include <random>
 
 #include "hpcplan/core/error.hpp"
-#include "hpcplan/world/box_map_io.hpp"
-#include "hpcplan/world/segment_box.hpp"
-#include "hpcplan/world/sphere_world.hpp"
+#include "hpcplan/env/box_map_io.hpp"
+#include "hpcplan/env/segment_box.hpp"
+#include "hpcplan/env/sphere_world.hpp"
 
-namespace hpcplan::world {
+namespace hpcplan::env {
 namespace {
 
 using V3 = Vec<3>;
@@ -214,4 +214,4 @@ TEST(SphereWorld, MalformedFilesAreRejected) {
 }
 
 }  // namespace
-}  // namespace hpcplan::world
+}  // namespace hpcplan::env

@@ -1,0 +1,194 @@
+// `hpcplan grid`: seed-002 grid search on the GOG field.
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "hpcplan/core/atomic_file.hpp"
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/dist/grid_planner_mpi.hpp"
+#include "hpcplan/io/grid_report_json.hpp"
+#include "hpcplan/partition/rank_simulation.hpp"
+#include "hpcplan/plan/grid_planner.hpp"
+#include "number_options.hpp"
+
+namespace hpcplan::cli {
+namespace {
+
+struct GridArgs {
+  GridProblem problem;
+  GridSearchOptions options;
+  std::string algo = "astar";
+  std::string heuristic = "lattice";
+  std::string connectivity = "seed";
+  std::string start, goal, output;
+  double weight = 2.0;
+  bool json = false;
+  dist::DistGridOptions dist;
+  std::string mode = "async";
+  std::vector<int> simulate_ranks;
+  std::vector<int> simulate_shifts{0, 1};
+};
+
+nlohmann::json simulation_json(const partition::RankSimulation& sim) {
+  nlohmann::json splits = nlohmann::json::array();
+  for (const auto& s : sim.splits) {
+    std::uint64_t max_ex = 0, min_ex = ~0ULL;
+    for (auto e : s.expanded) {
+      max_ex = std::max(max_ex, e);
+      min_ex = std::min(min_ex, e);
+    }
+    splits.push_back({{"ranks", s.ranks},
+                      {"coarsen_shift", s.coarsen_shift},
+                      {"expansion_deviation_percent", s.expansion_deviation_percent},
+                      {"stored_deviation_percent", s.stored_deviation_percent},
+                      {"imbalance", s.imbalance},
+                      {"max_expanded_per_rank", max_ex},
+                      {"min_expanded_per_rank", min_ex},
+                      {"remote_successors", s.remote_successors},
+                      {"remote_fraction", s.remote_fraction},
+                      {"remote_per_expansion", s.remote_per_expansion}});
+  }
+  return splits;
+}
+
+std::string simulation_table(const partition::RankSimulation& sim) {
+  std::string out =
+      "  predicted split (serial search observed; ownership hash of the state, or of its cell "
+      "for k > 0)\n"
+      "     ranks   k  expand dev %  stored dev %  max/mean  max expanded/rank  remote succ. %  "
+      "remote/expansion\n";
+  char line[200];
+  for (const auto& s : sim.splits) {
+    std::uint64_t max_ex = 0;
+    for (auto e : s.expanded) max_ex = std::max(max_ex, e);
+    std::snprintf(line, sizeof line, "  %8d %3d %13.3f %13.3f %9.3f %18llu %15.2f %17.3f\n",
+                  s.ranks, s.coarsen_shift, s.expansion_deviation_percent,
+                  s.stored_deviation_percent, s.imbalance, static_cast<unsigned long long>(max_ex),
+                  100.0 * s.remote_fraction, s.remote_per_expansion);
+    out += line;
+  }
+  return out;
+}
+
+}  // namespace
+
+Action register_grid_command(CLI::App& app) {
+  auto args = std::make_shared<GridArgs>();
+  CLI::App* cmd = app.add_subcommand("grid", "Grid BFS/A* on the GOG procedural obstacle field");
+  auto& p = args->problem;
+  add_number(cmd, "--dims", p.dims, "Dimensions, 1..16", 1, 16)->required();
+  cmd->add_option("--algo", args->algo, "astar | wastar | dijkstra | bfs")->capture_default_str();
+  CLI::Option* weight =
+      add_number(cmd, "--weight", args->weight, "Weighted A* weight w >= 1 (f = g + w h)", 1, 1e9)
+          ->capture_default_str();
+  cmd->add_option("--heuristic", args->heuristic, "lattice (exact free-space cost) | euclidean")
+      ->capture_default_str();
+  add_number(cmd, "--seed", p.gog.seed, "GOG seed")->capture_default_str();
+  add_number(cmd, "--extent", p.extent, "Lattice states per axis, 2..65535", 2, 65535)
+      ->capture_default_str();
+  cmd->add_option("--start", args->start, "Start state c1,c2,... (default: corner 0, adjusted)");
+  cmd->add_option("--goal", args->goal, "Goal state (default: corner extent-1, adjusted)");
+  add_number(cmd, "--max-states", args->options.max_states,
+             "Stored-state budget (0 = half of available memory)")
+      ->capture_default_str();
+  add_number(cmd, "--time-limit", args->options.time_limit_s, "Seconds (0 = none)", 0, 1e9)
+      ->capture_default_str();
+  cmd->add_option("--connectivity", args->connectivity, "seed (1 or 2 axes) | full (d <= 4)")
+      ->capture_default_str();
+  add_number(cmd, "--threshold", p.gog.threshold, "GOG threshold c_v (0 = from --density)", 0, 49)
+      ->capture_default_str();
+  add_number(cmd, "--density", p.gog.density,
+             "Blocked fraction aimed at by the automatic threshold", 0, 1)
+      ->capture_default_str();
+  add_number(cmd, "--gog-shift-p", p.gog.shift_p, "GOG b_p", 0, 63)->capture_default_str();
+  add_number(cmd, "--gog-shift-v", p.gog.shift_v, "GOG b_v", 0, 61)->capture_default_str();
+  auto& d = args->dist;
+  const char* mpi = "Distributed (under mpirun/srun)";
+  cmd->add_option("--mode", args->mode,
+                  "Distributed A*/Dijkstra schedule: async (HDA*) | bulk (seed 002 Alg. 6-7); "
+                  "BFS is always level-synchronous")
+      ->capture_default_str()
+      ->group(mpi);
+  add_number(cmd, "--owner-coarsen", d.coarsen_shift,
+             "Ownership hashes each coordinate >> k, keeping 2^k-wide cells on one rank", 0, 16)
+      ->capture_default_str()
+      ->group(mpi);
+  add_number(cmd, "--batch", d.batch, "Async: records per message", 1, 1048576)
+      ->capture_default_str()
+      ->group(mpi);
+  add_number(cmd, "--batch-age-ms", d.batch_age_ms, "Async: longest a record waits to be sent", 0,
+             1000)
+      ->capture_default_str()
+      ->group(mpi);
+  add_number(cmd, "--sync-every", d.sync_every, "Bulk: expansions between exchanges", 1, 1e18)
+      ->capture_default_str()
+      ->group(mpi);
+  add_number(cmd, "--sent-filter", d.sent_filter_log2,
+             "log2 slots of the filter that drops re-sent duplicate states (0 = off)", 0, 28)
+      ->capture_default_str()
+      ->group(mpi);
+  cmd->add_flag("--compare-serial", d.compare_serial,
+                "Rank 0 also solves serially first and reports search overhead and speedup")
+      ->group(mpi);
+  add_number(cmd, "--simulate-ranks", args->simulate_ranks,
+             "Predict the split over these rank counts (e.g. 2,4,...,4096) from one serial "
+             "search, instead of running distributed",
+             1, 1048576)
+      ->delimiter(',')
+      ->group(mpi);
+  add_number(cmd, "--simulate-coarsen", args->simulate_shifts,
+             "Ownership shifts k to predict for (0 = state hash)", 0, 16)
+      ->delimiter(',')
+      ->capture_default_str()
+      ->group(mpi);
+  cmd->add_flag("--path", args->options.keep_path, "Include the path");
+  cmd->add_flag("--json", args->json, "Print one JSON object instead of a summary");
+  cmd->add_option("--output", args->output, "Also write the JSON result to this file (atomically)");
+
+  return [args, weight](const Context& context) {
+    GridArgs& a = *args;
+    a.options.algorithm = parse_grid_algorithm(a.algo);
+    a.options.heuristic = parse_heuristic(a.heuristic);
+    a.problem.connectivity = parse_connectivity(a.connectivity);
+    if (weight->count() > 0) a.options.weight = a.weight;
+    if (!a.start.empty()) a.problem.start = parse_coordinates(a.start, "--start");
+    if (!a.goal.empty()) a.problem.goal = parse_coordinates(a.goal, "--goal");
+
+    a.dist.scheme = dist::parse_scheme(a.mode);
+    dist::validate(a.dist);
+
+    if (!a.simulate_ranks.empty()) {
+      if (context.comm && context.comm->size() > 1)
+        throw InputError(
+            "--simulate-ranks predicts P ranks from one process; run it without "
+            "mpirun (or with -np 1)");
+      const partition::RankSimulation sim =
+          partition::simulate_ranks(a.problem, a.options, a.simulate_ranks, a.simulate_shifts);
+      nlohmann::json j = to_json(sim.serial, a.options.keep_path);
+      j["rank_simulation"] = simulation_json(sim);
+      const std::string json = j.dump() + "\n";
+      if (!a.output.empty()) write_file_atomically(a.output, json);
+      if (a.json)
+        std::fputs(json.c_str(), stdout);
+      else
+        std::fputs((to_summary(sim.serial) + simulation_table(sim)).c_str(), stdout);
+      return kExitOk;
+    }
+    const GridReport report =
+        context.comm ? dist::solve_grid_distributed(a.problem, a.options, a.dist, *context.comm)
+                     : solve_grid(a.problem, a.options);
+    if (!context.is_root()) return kExitOk;
+    const std::string json = to_json(report, a.options.keep_path).dump() + "\n";
+    if (!a.output.empty()) write_file_atomically(a.output, json);
+    if (a.json)
+      std::fputs(json.c_str(), stdout);
+    else
+      std::fputs(to_summary(report).c_str(), stdout);
+    return kExitOk;
+  };
+}
+
+}  // namespace hpcplan::cli

@@ -1,0 +1,190 @@
+// hpcplan map3d / hpcplan sphere2d: one plan in a continuous world (a seed 004 box map, or a
+// seed 003 sphere world) with any of the world planners, as a summary table or JSON.
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "hpcplan/core/atomic_file.hpp"
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/env/box_map_io.hpp"
+#include "hpcplan/env/sphere_world.hpp"
+#include "hpcplan/io/path_csv.hpp"
+#include "hpcplan/plan/world_planner.hpp"
+#include "number_options.hpp"
+
+namespace hpcplan::cli {
+
+namespace {
+
+struct WorldArgs {
+  std::string map, start, goal, path_out, output;
+  plan::WorldPlanOptions options;
+  bool json = false;
+};
+
+template <int D>
+env::Vec<D> parse_point(const std::string& text, const char* option) {
+  env::Vec<D> p{};
+  std::stringstream in(text);
+  std::string item;
+  int k = 0;
+  while (std::getline(in, item, ',')) {
+    if (k == D) break;
+    try {
+      std::size_t used = 0;
+      p[k] = std::stod(item, &used);
+      if (used != item.size() || !std::isfinite(p[k])) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw InputError(std::string(option) + ": '" + item + "' is not a finite number");
+    }
+    ++k;
+  }
+  if (k != D || std::getline(in, item))
+    throw InputError(std::string(option) + " needs " + std::to_string(D) +
+                     " comma-separated coordinates, got '" + text + "'");
+  return p;
+}
+
+template <int D>
+nlohmann::json to_json(const plan::WorldPlan<D>& p) {
+  nlohmann::json path = nlohmann::json::array();
+  for (const auto& q : p.path) path.push_back(q);
+  nlohmann::json j = {{"status", to_string(p.status)},
+                      {"algo", p.algo},
+                      {"length", p.length},
+                      {"raw_length", p.raw_length},
+                      {"time_ms", p.time_ms},
+                      {"plan_ms", p.plan_ms},
+                      {"expanded", p.expanded},
+                      {"tree_size", p.tree_size},
+                      {"collision_checks", p.collision_checks},
+                      {"waypoints", p.path.size()},
+                      {"path", path}};
+  if (p.first_time_ms >= 0) j["first_solution_ms"] = p.first_time_ms;
+  return j;
+}
+
+template <int D>
+std::string summary(const plan::WorldPlan<D>& p, const std::string& map) {
+  char buf[512];
+  std::string s;
+  std::snprintf(buf, sizeof buf, "%-18s %s\n", "map", map.c_str());
+  s += buf;
+  const std::pair<const char*, std::string> rows[] = {
+      {"algorithm", p.algo},
+      {"status", std::string(to_string(p.status))},
+      {"length", std::to_string(p.length)},
+      {"as planned", std::to_string(p.raw_length)},
+      {"waypoints", std::to_string(p.path.size())},
+      {"time (ms)", std::to_string(p.time_ms)},
+      {"expanded", std::to_string(p.expanded)},
+      {"tree / stored", std::to_string(p.tree_size)},
+      {"collision checks", std::to_string(p.collision_checks)},
+  };
+  for (const auto& [k, v] : rows) {
+    std::snprintf(buf, sizeof buf, "%-18s %s\n", k, v.c_str());
+    s += buf;
+  }
+  return s;
+}
+
+// The query point: the option when given, else the map's own line.
+template <int D>
+env::Vec<D> query_point(const std::string& option_text, const std::optional<env::Vec<D>>& from_map,
+                        const char* option, const char* what) {
+  if (!option_text.empty()) return parse_point<D>(option_text, option);
+  if (from_map) return *from_map;
+  throw InputError(std::string("no ") + option + " given and the map has no " + what + " line");
+}
+
+template <class Map>
+int run(const WorldArgs& a, const Map& map) {
+  constexpr int D = std::remove_cvref_t<decltype(map.world)>::kDim;
+  const env::Vec<D> start = query_point<D>(a.start, map.start, "--start", "start");
+  const env::Vec<D> goal = query_point<D>(a.goal, map.goal, "--goal", "goal");
+
+  const plan::WorldPlan<D> p = plan::plan_in_world(map.world, start, goal, a.options);
+  const std::string json = to_json(p).dump() + "\n";
+  if (!a.output.empty()) write_file_atomically(a.output, json);
+  if (!a.path_out.empty() && p.status == Status::solved)
+    write_file_atomically(a.path_out, path_csv<D>(p.path));
+  std::fputs(a.json ? json.c_str() : summary(p, a.map).c_str(), stdout);
+  // No path is an answer (exit 0, status in the output); a hint on stderr says what to try.
+  if (p.status != Status::solved) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "hpcplan: %s found no path (%s)%s\n", p.algo.c_str(),
+                 std::string(to_string(p.status)).c_str(),
+                 p.status == Status::timeout ? "; raise --time"
+                 : p.algo == "visgraph"      ? "; try a finer --spacing"
+                                             : "; try a finer --resolution");
+  }
+  return kExitOk;
+}
+
+void add_common(CLI::App* cmd, const std::shared_ptr<WorldArgs>& args, const char* point,
+                double resolution) {
+  auto& o = args->options;
+  o.resolution = resolution;
+  cmd->add_option("--map", args->map, "World file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--start", args->start, std::string("Start ") + point + " (default: the map's)");
+  cmd->add_option("--goal", args->goal, std::string("Goal ") + point + " (default: the map's)");
+  cmd->add_option("--algo", o.algo,
+                  "astar|wastar|dijkstra|thetastar|visgraph|rrt|birrt|rrtstar|hybrid|"
+                  "hybrid_pick|hybrid_sample|ompl:<name>")
+      ->capture_default_str();
+  add_number(cmd, "--resolution", o.resolution, "Grid spacing of the searches", 1e-9, 1e9)
+      ->capture_default_str();
+  add_number(cmd, "--spacing", o.spacing,
+             "visgraph: bend points this far apart along obstacle edges (0 = a 40th of the "
+             "world's largest side)",
+             0, 1e9)
+      ->capture_default_str();
+  add_number(cmd, "--weight", o.weight, "Heuristic weight of wastar (>= 1)", 1, 1e9)
+      ->capture_default_str();
+  add_number(cmd, "--seed", o.seed, "Random seed")->capture_default_str();
+  add_number(cmd, "--time", o.time_s,
+             "Seconds: RRT* and OMPL's anytime planners refine until then; others give up", 1e-6,
+             1e9)
+      ->capture_default_str();
+  add_number(cmd, "--step", o.step, "Tree planners' step (0 = a twentieth of the world)", 0, 1e9)
+      ->capture_default_str();
+  add_number(cmd, "--samples", o.samples_per_expansion, "Hybrid: random points drawn per expansion",
+             1, 1000000)
+      ->capture_default_str();
+  add_number(cmd, "--max-states", o.max_states, "Grid searches: stop beyond this many states");
+  cmd->add_flag("--shortcut", o.shortcut, "Shortcut and tighten the path");
+  cmd->add_flag("--json", args->json, "Print one JSON object instead of a summary");
+  cmd->add_option("--path-out", args->path_out, "Write the path as CSV (atomically)");
+  cmd->add_option("--output", args->output, "Also write the JSON result to this file (atomically)");
+}
+
+template <class Load>
+Action register_world_command(CLI::App& app, const std::string& name, const std::string& about,
+                              const char* point, double resolution, Load load) {
+  auto args = std::make_shared<WorldArgs>();
+  add_common(app.add_subcommand(name, about), args, point, resolution);
+  return [args, name, load](const Context& context) {
+    if (context.comm && context.comm->size() > 1)
+      throw InputError(name + " runs in one process; start it without mpirun");
+    return run(*args, load(args->map));
+  };
+}
+
+}  // namespace
+
+Action register_map3d_command(CLI::App& app) {
+  return register_world_command(app, "map3d", "Plan in a 3D box map (seeds 001/004)", "x,y,z", 0.1,
+                                env::load_box_map);
+}
+
+Action register_sphere2d_command(CLI::App& app) {
+  return register_world_command(app, "sphere2d", "Plan in a 2D sphere world (seed 003)", "x,y",
+                                0.25, env::load_sphere_map);
+}
+
+}  // namespace hpcplan::cli

@@ -1,0 +1,29 @@
+#include "hpcplan/core/atomic_file.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include <unistd.h>
+
+#include "hpcplan/core/error.hpp"
+
+namespace hpcplan {
+
+void write_file_atomically(const std::string& path, std::string_view content) {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  auto fail = [&](const char* step) {
+    const std::string why = std::strerror(errno);
+    std::remove(tmp.c_str());
+    throw RunError("cannot " + std::string(step) + " '" + path + "': " + why);
+  };
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (f == nullptr) fail("create a temporary file for");
+  const bool written = std::fwrite(content.data(), 1, content.size(), f) == content.size();
+  const bool flushed = std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
+  if (std::fclose(f) != 0 || !written || !flushed) fail("write");
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) fail("rename the temporary file onto");
+}
+
+}  // namespace hpcplan

@@ -1,0 +1,133 @@
+#include "hpcplan/dist/grid_planner_mpi.hpp"
+
+#include <thread>
+
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/core/stopwatch.hpp"
+#include "hpcplan/graph/lattice_heuristic.hpp"
+#include "hpcplan/partition/ownership.hpp"
+#include "hpcplan/plan/grid_planner_impl.hpp"
+
+namespace hpcplan::dist {
+
+Scheme parse_scheme(std::string_view name) {
+  if (name == "async") return Scheme::async;
+  if (name == "bulk" || name == "bulk_sync") return Scheme::bulk_sync;
+  throw InputError("unknown --mode '" + std::string(name) + "' (expected async or bulk)");
+}
+
+std::string_view to_string(Scheme s) {
+  switch (s) {
+    case Scheme::async:
+      return "async";
+    case Scheme::bulk_sync:
+      return "bulk_sync";
+    case Scheme::level_sync:
+      return "level_sync";
+  }
+  return "unknown";
+}
+
+void validate(const DistGridOptions& o) {
+  if (o.coarsen_shift < 0 || o.coarsen_shift > 16)
+    throw InputError("--owner-coarsen must be in 0..16, got " + std::to_string(o.coarsen_shift));
+  if (o.batch < 1 || o.batch > (1u << 20))
+    throw InputError("--batch must be in 1..1048576 records, got " + std::to_string(o.batch));
+  if (!(o.batch_age_ms >= 0.0) || o.batch_age_ms > 1000.0)
+    throw InputError("--batch-age-ms must be in 0..1000");
+  if (o.sync_every < 1) throw InputError("--sync-every must be at least 1");
+  if (o.sent_filter_log2 < 0 || o.sent_filter_log2 > 28)
+    throw InputError("--sent-filter must be in 0..28 (log2 of its slots)");
+}
+
+namespace {
+
+template <int W>
+void run_distributed(const GogField& field, const GridProblem& problem, const GridSearchOptions& o,
+                     const DistGridOptions& dist, const mpi::Communicator& comm,
+                     GridReport& report) {
+  LatticeGraph<W> graph(field, problem.connectivity);
+  const auto start = graph.pack(report.start);
+  const auto goal = graph.pack(report.goal);
+  const int p = comm.size();
+  // A user's budget is the job's total; the derived one is already per rank.
+  std::uint64_t per_rank = report.max_states;
+  if (o.max_states != 0)
+    per_rank = (o.max_states + static_cast<std::uint64_t>(p) - 1) / static_cast<std::uint64_t>(p);
+  else
+    report.max_states = per_rank * static_cast<std::uint64_t>(p);
+  const auto eo = hpcplan::detail::engine_options(o, report.weight, per_rank);
+
+  DistOptions d;
+  d.scheme = o.algorithm == GridAlgorithm::bfs ? Scheme::level_sync : dist.scheme;
+  d.batch = dist.batch;
+  d.batch_age_ms = dist.batch_age_ms;
+  d.sync_every = dist.sync_every;
+  d.sent_filter_log2 = dist.sent_filter_log2;
+  d.yield_when_idle = comm.ranks_on_node() > static_cast<int>(std::thread::hardware_concurrency());
+  const partition::Ownership<W> owner(graph.layout(), p, dist.coarsen_shift);
+
+  auto search = [&](const auto& h) {
+    using H = std::remove_cvref_t<decltype(h)>;
+    DistributedSearch<search::DefaultVisitedMap, LatticeGraph<W>, H, partition::Ownership<W>>
+        engine(graph, h, owner, comm, eo, d);
+    return engine.run(start, goal);
+  };
+  const auto r =
+      hpcplan::detail::with_heuristic<W>(o, problem, graph.layout(), report.goal, search);
+  report.status = r.result.status;
+  report.cost = r.result.cost;
+  report.hops = r.result.hops;
+  report.counters = r.result.counters;
+  report.per_rank = std::move(r.per_rank);
+  // One rank runs the serial engine (DistributedSearch::run), and says so.
+  report.scheme = p == 1 ? "serial" : std::string(to_string(d.scheme));
+  if (o.keep_path)
+    for (const auto& s : r.result.path) report.path.push_back(graph.unpack(s));
+}
+
+}  // namespace
+
+GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOptions& options,
+                                  const DistGridOptions& dist, const mpi::Communicator& comm) {
+  hpcplan::validate(problem, options);
+  validate(dist);
+  Stopwatch setup;
+  const GogField field(problem.dims, problem.extent, problem.gog);
+  GridReport report = prepare_grid_report(problem, options, field, comm.ranks_on_node());
+  report.setup_ms = setup.milliseconds();
+  report.ranks = comm.size();
+  report.visited_map = search::DefaultVisitedMap::name;
+  report.coarsen_shift = dist.coarsen_shift;
+  report.batch = dist.batch;
+  report.batch_age_ms = dist.batch_age_ms;
+  report.sync_every = dist.sync_every;
+
+  if (dist.compare_serial && comm.rank() == 0) {
+    // Before the distributed run (the other ranks wait at its opening barrier), so the two
+    // never compete for cores.
+    const GridReport serial = solve_grid(problem, options);
+    report.has_serial_reference = true;
+    report.serial_status = serial.status;
+    report.serial_cost = serial.cost;
+    report.serial_hops = serial.hops;
+    report.serial_expanded = serial.counters.expanded;
+    report.serial_time_ms = serial.counters.time_ms;
+  }
+
+  switch (report.key_words) {
+    case 1:
+      run_distributed<1>(field, problem, options, dist, comm, report);
+      break;
+    case 2:
+      run_distributed<2>(field, problem, options, dist, comm, report);
+      break;
+    default:
+      run_distributed<4>(field, problem, options, dist, comm, report);
+      break;
+  }
+  finish_grid_report(report);
+  return report;
+}
+
+}  // namespace hpcplan::dist

@@ -1,0 +1,55 @@
+#pragma once
+// The grid planner (serial lattice A* / weighted A*) as an OMPL planner, so it runs inside
+// ompl::tools::Benchmark beside OMPL's planners on the same ProblemDefinition:
+//  - the start and goal states are mapped to their lattice cells, solve_grid() searches the
+//    seed-002 lattice, and the lattice path becomes continuous cell centres with the exact
+//    start and goal states at its ends (a segment inside one cell is always valid);
+//  - with `shortcut` on, OMPL's PathSimplifier then shortens the path in continuous space with
+//    the space information's own motion validator, which takes grid paths below the lattice's
+//    quality limit (sqrt(d/2) in open space);
+//  - the lattice's collision checks are added to the world's checker, so checks are counted
+//    by one object for every planner.
+// Parameters (declared, so Benchmark logs them): weight (1 = A*), heuristic (lattice |
+// euclidean), smoothing (0/1: simplify + tighten), time_limit (s, 0 = none; the search also stops
+// when OMPL's termination condition fires during shortcutting).
+#include <string>
+
+#include <ompl/base/Planner.h>
+
+#include "hpcplan/plan/grid_planner.hpp"
+#include "hpcplan/sampling/gog_world.hpp"
+
+namespace hpcplan::plan {
+
+class GridAStarPlanner : public ompl::base::Planner {
+ public:
+  GridAStarPlanner(const sampling::GogWorld& world,
+                   Connectivity connectivity = Connectivity::seed_pairs);
+
+  ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition& ptc) override;
+  void getPlannerData(ompl::base::PlannerData& data) const override;
+
+  void setWeight(double w) { weight_ = w; }
+  double getWeight() const { return weight_; }
+  void setHeuristic(const std::string& h);
+  std::string getHeuristic() const { return std::string(to_string(heuristic_)); }
+  void setShortcut(bool s) { shortcut_ = s; }
+  bool getShortcut() const { return shortcut_; }
+  void setTimeLimit(double s) { time_limit_s_ = s; }
+  double getTimeLimit() const { return time_limit_s_; }
+
+  // The last search's report (lattice cost, expansions, ...), for callers that want more
+  // than the path.
+  const GridReport& lastReport() const { return last_; }
+
+ private:
+  sampling::GogWorld world_;
+  Connectivity connectivity_;
+  double weight_ = 1.0;
+  HeuristicKind heuristic_ = HeuristicKind::lattice;
+  bool shortcut_ = true;
+  double time_limit_s_ = 0.0;
+  GridReport last_;
+};
+
+}  // namespace hpcplan::plan

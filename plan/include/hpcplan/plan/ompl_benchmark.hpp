@@ -1,0 +1,82 @@
+#pragma once
+// Seed 002's comparison in one harness: the grid planner and OMPL's sampling planners run
+// inside ompl::tools::Benchmark on one GOG problem (same space, checker, motion validator and
+// start/goal states), and every run becomes a row with the seed's metrics.
+//
+// Per run the harness records, besides Benchmark's own properties (which go to the OMPL log):
+//  - every solution improvement (time, length) through the ProblemDefinition's intermediate
+//    solution callback; anytime planners (BIT*, RRT*, ...) report each one;
+//  - first solution: the first improvement, or the planner's end for planners that report
+//    none (FMT*, the grid planner, RRT-Connect);
+//  - "best" solution (seed 002 §V-D), for planners that reported improvements: the first
+//    moment the quality reaches the midpoint
+//    between the first quality and the reference quality, the best final quality any run of
+//    any planner reached in this invocation;
+//  - final quality at the time limit; collision checks (the shared checker's count);
+//  - path validity, re-checked independently of OMPL (sampling/gog_world.hpp).
+// Quality is length / straight-line distance (seed 002 eq. 2).
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hpcplan/env/gog.hpp"
+
+namespace hpcplan::plan {
+
+struct OmplBenchOptions {
+  int dims = 2;
+  int extent = 100;
+  GogParams gog;
+  std::vector<std::string> planners{"gridastar", "bitstar", "fmt"};
+  double time_s = 5.0;  // per run
+  int runs = 10;
+  std::uint64_t seed = 1;         // GOG field and OMPL's random generator
+  double resolution_cells = 0.1;  // discrete motion checks: spacing, in cell widths
+  std::string motion = "exact";   // exact | discrete (sampling/gog_world.hpp)
+  bool shortcut = true;           // grid planner: shorten its path in continuous space
+  double grid_weight = 1.0;       // grid planner: 1 = A*
+  double memory_mb = 8192.0;      // Benchmark's per-run memory limit
+  std::string experiment;         // name in the log; default "gog-<d>d"
+};
+
+struct OmplRunRow {
+  std::string planner;  // the name the user asked for (gridastar, bitstar, fmt, ...)
+  int dims = 0;
+  int run = 0;
+  std::uint64_t seed = 0;
+  bool solved = false;
+  double time_s = 0.0;  // the whole run, as Benchmark measured it
+  double time_first_s = -1.0, length_first = -1.0, quality_first = -1.0;
+  double time_best_s = -1.0, quality_best = -1.0;
+  double length_final = -1.0, quality_final = -1.0;
+  std::uint64_t collision_checks = 0;
+  bool path_valid = true;
+  bool anytime = false;  // reported improvements while running; only these have a "best"
+  std::vector<std::pair<double, double>> improvements;  // (s, length)
+};
+
+struct OmplBenchResult {
+  std::vector<OmplRunRow> rows;
+  double straight_line = 0.0;
+  double reference_quality = -1.0;  // best final quality of any run (-1 if none solved)
+  std::vector<double> start, goal;  // the continuous start and goal (cell centres)
+};
+
+// Names accepted in OmplBenchOptions::planners.
+const std::vector<std::string>& known_planners();
+
+// FMT*'s sample count for dimension d (seed 002 eq. 1): 2000 + 1500 (d - 2)^2.
+unsigned fmt_samples(int dims);
+
+// Throws InputError for anything a user could have got wrong.
+void validate(const OmplBenchOptions& options);
+
+// Runs the benchmark. If log_path / csv_path are non-empty, writes the OMPL benchmark log and
+// the CSV, each through a temporary file renamed into place.
+OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& options, const std::string& log_path,
+                                   const std::string& csv_path);
+
+std::string to_csv(const OmplBenchResult& result);
+
+}  // namespace hpcplan::plan

@@ -1,0 +1,64 @@
+#pragma once
+// One entry point for every planner in a continuous world (3D box maps, the 2D sphere world):
+// the grid searches run the shared search engine on a ContinuousGrid, the tree planners are
+// hpcplan's own, and "ompl:<name>" hands the same world to an OMPL planner. Every returned
+// path starts exactly at the start, ends exactly at the goal and has been re-checked segment
+// by segment with the world's exact test (a failure there is an internal error, never an
+// answer).
+#include <cstdint>
+#include <stop_token>
+#include <string>
+#include <vector>
+
+#include "hpcplan/core/status.hpp"
+
+#include "hpcplan/env/point.hpp"
+
+namespace hpcplan::plan {
+
+struct WorldPlanOptions {
+  // astar, wastar, dijkstra, thetastar, visgraph, rrt, birrt, rrtstar, hybrid, hybrid_pick,
+  // hybrid_sample, ompl:<name>
+  std::string algo = "astar";
+  double resolution = 0.1;  // grid searches
+  double weight = 2.0;      // wastar
+  double spacing = 0.0;     // visgraph: bend points this far apart; 0 = a 40th of the world
+  std::uint64_t seed = 1;
+  double time_s = 1.0;             // tree planners: RRT* refines until then; others stop at a path
+  double step = 0.0;               // tree planners' eta; 0 = a twentieth of the largest extent
+  std::uint64_t max_states = 0;    // grid searches' memory budget (states); 0 = none
+  int samples_per_expansion = 10;  // hybrid, hybrid_sample
+  bool shortcut = false;           // string pulling + tightening after planning
+  std::stop_token cancel;          // another thread may end the plan (status cancelled)
+};
+
+template <int D>
+struct WorldPlan {
+  Status status = Status::no_path;
+  std::string algo;
+  std::vector<env::Vec<D>> path;
+  double length = 0.0;          // of `path` (after shortcutting when asked)
+  double raw_length = 0.0;      // as the planner returned it
+  double time_ms = 0.0;         // planning plus shortcutting
+  double plan_ms = 0.0;         // planning alone
+  double first_time_ms = -1.0;  // anytime planners: when the first path appeared
+  std::uint64_t expanded = 0;   // grid searches: states expanded
+  std::uint64_t tree_size = 0;  // tree planners: vertices; grid searches: states stored
+  std::uint64_t collision_checks = 0;
+};
+
+const std::vector<std::string>& world_algorithms();  // names without the ompl: ones
+const std::vector<std::string>& world_ompl_planners();
+
+// Throws InputError for an unknown algorithm, bad options, or a start/goal that is not free.
+template <class W>
+WorldPlan<W::kDim> plan_in_world(const W& world, const env::Vec<W::kDim>& start,
+                                 const env::Vec<W::kDim>& goal, const WorldPlanOptions& o);
+
+// The exact re-check every plan goes through: ends equal start and goal, every segment free.
+// Returns an empty string or what is wrong.
+template <class W>
+std::string path_problem(const W& world, const std::vector<env::Vec<W::kDim>>& path,
+                         const env::Vec<W::kDim>& start, const env::Vec<W::kDim>& goal);
+
+}  // namespace hpcplan::plan

@@ -1,0 +1,127 @@
+#include "hpcplan/plan/grid_astar_planner.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <stop_token>
+#include <thread>
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/goals/GoalState.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/PathSimplifier.h>
+
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/sampling/path_tightening.hpp"
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace hpcplan::plan {
+
+GridAStarPlanner::GridAStarPlanner(const sampling::GogWorld& world, Connectivity connectivity)
+    : ob::Planner(world.si, "GridAStar"), world_(world), connectivity_(connectivity) {
+  specs_.approximateSolutions = false;
+  specs_.optimizingPaths = false;  // one answer per solve; it does not improve over time
+  specs_.directed = true;
+  declareParam<double>("weight", this, &GridAStarPlanner::setWeight, &GridAStarPlanner::getWeight,
+                       "1.:0.1:10.");
+  declareParam<std::string>("heuristic", this, &GridAStarPlanner::setHeuristic,
+                            &GridAStarPlanner::getHeuristic);
+  declareParam<bool>("smoothing", this, &GridAStarPlanner::setShortcut,
+                     &GridAStarPlanner::getShortcut, "0,1");
+  declareParam<double>("time_limit", this, &GridAStarPlanner::setTimeLimit,
+                       &GridAStarPlanner::getTimeLimit, "0.:1.:3600.");
+}
+
+void GridAStarPlanner::setHeuristic(const std::string& h) {
+  heuristic_ = parse_heuristic(h);
+}
+
+ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition& ptc) {
+  checkValidity();
+  const ob::State* start = pis_.nextStart();
+  if (start == nullptr) return ob::PlannerStatus::INVALID_START;
+  const auto* goal = dynamic_cast<const ob::GoalState*>(pdef_->getGoal().get());
+  if (goal == nullptr) return ob::PlannerStatus::UNRECOGNIZED_GOAL_TYPE;
+  const ob::State* goal_state = goal->getState();
+  if (!world_.checker->point_is_free(start->as<ob::RealVectorStateSpace::StateType>()->values))
+    return ob::PlannerStatus::INVALID_START;
+  if (!world_.checker->point_is_free(goal_state->as<ob::RealVectorStateSpace::StateType>()->values))
+    return ob::PlannerStatus::INVALID_GOAL;
+
+  GridProblem problem;
+  problem.dims = world_.field->dims();
+  problem.extent = world_.field->extent();
+  problem.gog = world_.field->params();
+  problem.gog.threshold = world_.field->threshold();  // the very field the checker uses
+  problem.connectivity = connectivity_;
+  problem.start = world_.checker->cell_of(start);
+  problem.goal = world_.checker->cell_of(goal_state);
+  GridSearchOptions options;
+  options.algorithm = weight_ > 1.0 ? GridAlgorithm::wastar : GridAlgorithm::astar;
+  if (weight_ > 1.0) options.weight = weight_;
+  options.heuristic = heuristic_;
+  options.time_limit_s = time_limit_s_;
+  options.keep_path = true;
+  {
+    // OMPL's termination condition is a predicate; the search polls a stop token. A watcher
+    // thread evaluates the predicate every millisecond and triggers the token, so the search
+    // ends within about a millisecond of the condition turning true.
+    std::stop_source ptc_fired;
+    options.cancel = ptc_fired.get_token();
+    std::jthread watcher([&ptc, &ptc_fired](std::stop_token search_done) {
+      while (!search_done.stop_requested()) {
+        if (ptc()) {
+          ptc_fired.request_stop();
+          return;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+    });
+    last_ = solve_grid(problem, options);
+  }
+  world_.checker->add_checks(last_.counters.collision_checks);
+  if (last_.status == search::Status::timeout || last_.status == search::Status::cancelled)
+    return ob::PlannerStatus::TIMEOUT;
+  if (last_.status != search::Status::solved) return ob::PlannerStatus::ABORT;
+
+  auto path = std::make_shared<og::PathGeometric>(si_);
+  const auto append_centre = [&](const std::vector<int>& cell) {
+    ob::State* s = si_->allocState();
+    sampling::cell_centre(cell, s);
+    path->append(s);
+    si_->freeState(s);
+  };
+  path->append(start);
+  for (const auto& cell : last_.path) append_centre(cell);
+  path->append(goal_state);
+  // Drop the centres that coincide with the exact start or goal (zero-length segments).
+  auto& states = path->getStates();
+  if (states.size() > 2 && si_->distance(states[0], states[1]) == 0.0) {
+    si_->freeState(states[1]);
+    states.erase(states.begin() + 1);
+  }
+  if (states.size() > 2 && si_->distance(states[states.size() - 2], states.back()) == 0.0) {
+    si_->freeState(states[states.size() - 2]);
+    states.erase(states.end() - 2);
+  }
+  if (shortcut_ && !ptc()) {
+    og::PathSimplifier simplifier(si_, pdef_->getGoal(), pdef_->getOptimizationObjective());
+    simplifier.simplify(*path, ptc);
+    // Randomised shortcuts stop short of the taut path around obstacle corners; pulling the
+    // path tight finishes the job (subdividing at two cell widths).
+    sampling::tighten_path(si_, *path, ptc, 2.0);
+  }
+  pdef_->addSolutionPath(path, false, 0.0, getName());
+  return ob::PlannerStatus::EXACT_SOLUTION;
+}
+
+void GridAStarPlanner::getPlannerData(ob::PlannerData& data) const {
+  Planner::getPlannerData(data);
+  data.properties["expanded INTEGER"] = std::to_string(last_.counters.expanded);
+  data.properties["lattice cost REAL"] = std::to_string(last_.cost);
+}
+
+}  // namespace hpcplan::plan

@@ -1,0 +1,333 @@
+#include "hpcplan/plan/ompl_benchmark.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/geometric/SimpleSetup.h>
+#include <ompl/geometric/planners/fmt/FMT.h>
+#include <ompl/geometric/planners/informedtrees/ABITstar.h>
+#include <ompl/geometric/planners/informedtrees/AITstar.h>
+#include <ompl/geometric/planners/informedtrees/BITstar.h>
+#include <ompl/geometric/planners/prm/PRMstar.h>
+#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/geometric/planners/rrt/RRTstar.h>
+#include <ompl/tools/benchmark/Benchmark.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "hpcplan/core/atomic_file.hpp"
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/core/progress.hpp"
+#include "hpcplan/core/stopwatch.hpp"
+#include "hpcplan/plan/grid_astar_planner.hpp"
+#include "hpcplan/plan/grid_problem.hpp"
+#include "hpcplan/sampling/gog_world.hpp"
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace hpcplan::plan {
+
+// The harness drives the OMPL adapters of the sampling layer throughout.
+using namespace sampling;
+
+namespace {
+
+// User-facing name -> how to build it. The OMPL names must be unique within one log.
+struct PlannerKind {
+  std::string ompl_name;
+  std::function<ob::PlannerPtr(const GogWorld&, const OmplBenchOptions&)> make;
+};
+
+// OMPL's Benchmark samples a planner's progress properties from a second thread while the
+// planner runs; several planners read their unsynchronised data structures there (BIT*'s
+// GNAT, FMT*'s neighbourhoods), which crashed 20 s runs at 4D. Improvements come through the
+// intermediate-solution callback instead, so the progress properties are dropped.
+template <class P>
+class WithoutProgress : public P {
+ public:
+  explicit WithoutProgress(const ob::SpaceInformationPtr& si) : P(si) {
+    this->plannerProgressProperties_.clear();
+  }
+};
+
+template <class P>
+ob::PlannerPtr quiet(const GogWorld& w) {
+  return std::make_shared<WithoutProgress<P>>(w.si);
+}
+
+double free_volume(const GogField& field) {
+  return std::pow(static_cast<double>(field.extent()), field.dims()) *
+         (1.0 - field.blocked_fraction());
+}
+
+ob::PlannerPtr grid(const GogWorld& w, const OmplBenchOptions& o, bool smoothing) {
+  auto p = std::make_shared<GridAStarPlanner>(w);
+  p->setShortcut(smoothing);
+  p->setWeight(o.grid_weight);
+  p->setTimeLimit(o.time_s);
+  return p;
+}
+
+ob::PlannerPtr fmt(const GogWorld& w, const OmplBenchOptions& o, bool nearest_k) {
+  auto p = std::make_shared<WithoutProgress<og::FMT>>(w.si);
+  p->setNumSamples(fmt_samples(o.dims));
+  p->setFreeSpaceVolume(free_volume(*w.field));
+  if (!nearest_k) {
+    p->setNearestK(false);
+    p->setRadiusMultiplier(1.0);
+  }
+  return p;
+}
+
+const std::map<std::string, PlannerKind>& planner_table() {
+  static const std::map<std::string, PlannerKind> table = {
+      {"gridastar",
+       {"GridAStar",
+        [](const GogWorld& w, const OmplBenchOptions& o) { return grid(w, o, o.shortcut); }}},
+      // The lattice path as found, for the time and quality of the search alone.
+      {"gridastar_lattice",
+       {"GridAStarLattice",
+        [](const GogWorld& w, const OmplBenchOptions& o) { return grid(w, o, false); }}},
+      {"bitstar",
+       {"kBITstar",
+        [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::BITstar>(w); }}},
+      {"abitstar",
+       {"kABITstar",
+        [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::ABITstar>(w); }}},
+      {"aitstar",
+       {"AITstar",
+        [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::AITstar>(w); }}},
+      // Seed 002 eq. 1 samples, k-nearest connections (OMPL's default).
+      {"fmt",
+       {"FMT", [](const GogWorld& w, const OmplBenchOptions& o) { return fmt(w, o, true); }}},
+      // The same samples with radius connections: the k-nearest rule's k grows with d, the
+      // radius rule's neighbourhoods shrink with the free volume instead.
+      {"fmt_radius",
+       {"FMTradius",
+        [](const GogWorld& w, const OmplBenchOptions& o) { return fmt(w, o, false); }}},
+      {"rrtconnect",
+       {"RRTConnect",
+        [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::RRTConnect>(w); }}},
+      {"rrtstar",
+       {"RRTstar",
+        [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::RRTstar>(w); }}},
+      {"informedrrtstar",
+       {"InformedRRTstar",
+        [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::InformedRRTstar>(w); }}},
+      {"prmstar",
+       {"PRMstar",
+        [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::PRMstar>(w); }}},
+  };
+  return table;
+}
+
+std::string csv_number(double v, const char* format = "%.6f") {
+  if (v < 0) return "";  // not available
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+}  // namespace
+
+const std::vector<std::string>& known_planners() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const auto& [name, kind] : planner_table()) n.push_back(name);
+    return n;
+  }();
+  return names;
+}
+
+unsigned fmt_samples(int dims) {
+  const unsigned k = static_cast<unsigned>(dims - 2);
+  return 2000u + 1500u * k * k;
+}
+
+void validate(const OmplBenchOptions& o) {
+  if (o.dims < 2 || o.dims > 10)
+    throw InputError("--dims must be in 2..10 for the OMPL comparison, got " +
+                     std::to_string(o.dims));
+  if (o.extent < 2 || o.extent > 1000)
+    throw InputError("--extent must be in 2..1000, got " + std::to_string(o.extent));
+  if (!(o.time_s > 0.0) || o.time_s > 3600.0)
+    throw InputError("--time must be in (0, 3600] seconds");
+  if (o.runs < 1 || o.runs > 10000) throw InputError("--runs must be in 1..10000");
+  if (o.planners.empty()) throw InputError("--planners: name at least one planner");
+  for (std::size_t i = 0; i < o.planners.size(); ++i) {
+    if (!planner_table().contains(o.planners[i])) {
+      std::string list;
+      for (const auto& n : known_planners()) list += (list.empty() ? "" : ", ") + n;
+      throw InputError("unknown planner '" + o.planners[i] + "' (known: " + list + ")");
+    }
+    for (std::size_t j = 0; j < i; ++j)
+      if (o.planners[j] == o.planners[i])
+        throw InputError("planner '" + o.planners[i] + "' is listed twice");
+  }
+  if (!(o.resolution_cells > 0.0 && o.resolution_cells <= 1.0))
+    throw InputError("--resolution must be in (0, 1] cell widths");
+  (void)parse_motion_check(o.motion);
+  if (!(o.grid_weight >= 1.0)) throw InputError("--grid-weight must be >= 1");
+  if (!(o.gog.density > 0.0 && o.gog.density < 1.0))
+    throw InputError("--density must be in (0, 1)");
+}
+
+OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o, const std::string& log_path,
+                                   const std::string& csv_path) {
+  validate(o);
+  // OMPL draws every planner's generator from one seeded sequence, so an invocation is
+  // reproducible run by run; the seed must be set before any generator exists.
+  ompl::RNG::setSeed(o.seed);
+  GogParams gog = o.gog;
+  gog.seed = o.seed;
+  auto field = std::make_shared<const GogField>(o.dims, o.extent, gog);
+  const GogWorld world = make_gog_world(field, o.resolution_cells, parse_motion_check(o.motion));
+
+  // The seed's start and goal (III-B), as cell centres.
+  const auto start_cell = adjust_to_free(*field, std::vector<int>(o.dims, 0), +1, "start");
+  const auto goal_cell = adjust_to_free(*field, std::vector<int>(o.dims, o.extent - 1), -1, "goal");
+  OmplBenchResult result;
+  ob::ScopedState<> start(world.space), goal(world.space);
+  cell_centre(start_cell, start.get());
+  cell_centre(goal_cell, goal.get());
+  for (int a = 0; a < o.dims; ++a) {
+    result.start.push_back(start[a]);
+    result.goal.push_back(goal[a]);
+  }
+  result.straight_line = world.si->distance(start.get(), goal.get());
+
+  og::SimpleSetup setup(world.si);
+  setup.setStartAndGoalStates(start, goal, 1e-6);
+  setup.setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(world.si));
+
+  ompl::tools::Benchmark bench(
+      setup, o.experiment.empty() ? "gog-" + std::to_string(o.dims) + "d" : o.experiment);
+  std::map<std::string, std::string> user_name;  // OMPL name -> user name
+  for (const auto& name : o.planners) {
+    const auto& kind = planner_table().at(name);
+    ob::PlannerPtr p = kind.make(world, o);
+    p->setName(kind.ompl_name);  // BIT* may amend it (k-nearest BIT* is "kBITstar")
+    user_name[p->getName()] = name;
+    bench.addPlanner(p);
+  }
+
+  // Per-run bookkeeping shared by the events (Benchmark runs one planner at a time; the
+  // planner may call back from its own thread, hence the plain data behind one run).
+  Stopwatch clock;
+  std::vector<std::pair<double, double>> improvements;
+  std::map<std::string, int> run_index;
+  Progress progress("hpcplan ompl", o.planners.size() * static_cast<std::size_t>(o.runs));
+  bench.setPreRunEvent([&](const ob::PlannerPtr& planner) {
+    world.checker->reset_checks();
+    improvements.clear();
+    planner->getProblemDefinition()->setIntermediateSolutionCallback(
+        [&](const ob::Planner*, const std::vector<const ob::State*>&, const ob::Cost cost) {
+          improvements.emplace_back(clock.seconds(), cost.value());
+        });
+    clock = Stopwatch();
+  });
+  bench.setPostRunEvent(
+      [&](const ob::PlannerPtr& planner, ompl::tools::Benchmark::RunProperties& run) {
+        OmplRunRow row;
+        row.planner = user_name.at(planner->getName());
+        row.dims = o.dims;
+        row.run = run_index[row.planner]++;
+        row.seed = o.seed;
+        row.collision_checks = world.checker->checks();  // before re-validation below
+        const auto t = run.find("time REAL");
+        row.time_s = t != run.end() ? std::stod(t->second) : clock.seconds();
+        const auto pdef = planner->getProblemDefinition();
+        row.solved = pdef->hasExactSolution();
+        row.improvements = improvements;
+        row.anytime = !improvements.empty();
+        if (row.solved) {
+          const auto* path = pdef->getSolutionPath()->as<og::PathGeometric>();
+          row.length_final = path->length();
+          std::vector<std::vector<double>> points;
+          const std::size_t n = path->getStateCount();
+          for (std::size_t i = 0; i < n; ++i) {
+            const double* x = path->getState(i)->as<ob::RealVectorStateSpace::StateType>()->values;
+            points.emplace_back(x, x + o.dims);
+          }
+          const bool ends_ok = n > 0 && world.si->distance(path->getState(0), start.get()) < 1e-9 &&
+                               world.si->distance(path->getState(n - 1), goal.get()) < 1e-6;
+          row.path_valid = ends_ok && first_invalid_step(world, points) < 0;
+          if (row.improvements.empty()) row.improvements.emplace_back(row.time_s, row.length_final);
+          row.time_first_s = row.improvements.front().first;
+          row.length_first = row.improvements.front().second;
+          row.quality_first = row.length_first / result.straight_line;
+          row.quality_final = row.length_final / result.straight_line;
+        }
+        run["collision checks INTEGER"] = std::to_string(row.collision_checks);
+        run["path valid BOOLEAN"] = row.path_valid ? "1" : "0";
+        if (row.solved) {
+          run["time first REAL"] = std::to_string(row.time_first_s);
+          run["quality first REAL"] = std::to_string(row.quality_first);
+          run["quality final REAL"] = std::to_string(row.quality_final);
+        }
+        progress.step(row.planner + " run " + std::to_string(row.run));
+        result.rows.push_back(std::move(row));
+        planner->getProblemDefinition()->setIntermediateSolutionCallback(nullptr);
+      });
+
+  ompl::tools::Benchmark::Request request(o.time_s, o.memory_mb, static_cast<unsigned>(o.runs),
+                                          0.05, false, false, false);
+  bench.benchmark(request);
+
+  // The "best" solution needs the reference quality, known only once every run is done.
+  for (const auto& r : result.rows)
+    if (r.solved && (result.reference_quality < 0 || r.quality_final < result.reference_quality))
+      result.reference_quality = r.quality_final;
+  for (auto& r : result.rows) {
+    if (!r.solved || !r.anytime) continue;
+    const double target = 0.5 * (r.quality_first + result.reference_quality);
+    for (const auto& [time, length] : r.improvements)
+      if (length / result.straight_line <= target + 1e-12) {
+        r.time_best_s = time;
+        r.quality_best = length / result.straight_line;
+        break;
+      }
+  }
+
+  if (!log_path.empty()) {
+    std::ostringstream log;
+    if (!bench.saveResultsToStream(log)) throw RunError("could not write the OMPL log");
+    write_file_atomically(log_path, log.str());
+  }
+  if (!csv_path.empty()) write_file_atomically(csv_path, to_csv(result));
+  return result;
+}
+
+std::string to_csv(const OmplBenchResult& result) {
+  std::ostringstream out;
+  out << "planner,dims,run,seed,solved,time_first_s,length_first,quality_first,time_best_s,"
+         "quality_best,quality_final,length_final,time_s,collision_checks,path_valid,"
+         "improvements\n";
+  for (const auto& r : result.rows) {
+    std::string trace;
+    for (const auto& [t, len] : r.improvements) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%s%.6f:%.6f", trace.empty() ? "" : ";", t, len);
+      trace += buf;
+    }
+    out << r.planner << ',' << r.dims << ',' << r.run << ',' << r.seed << ',' << (r.solved ? 1 : 0)
+        << ',' << csv_number(r.time_first_s) << ',' << csv_number(r.length_first) << ','
+        << csv_number(r.quality_first) << ',' << csv_number(r.time_best_s) << ','
+        << csv_number(r.quality_best) << ',' << csv_number(r.quality_final) << ','
+        << csv_number(r.length_final) << ',' << csv_number(r.time_s) << ',' << r.collision_checks
+        << ',' << (r.path_valid ? 1 : 0) << ',' << trace << '\n';
+  }
+  return out.str();
+}
+
+}  // namespace hpcplan::plan

@@ -1,0 +1,185 @@
+#include "hpcplan/sampling/world_ompl.hpp"
+
+#include <functional>
+#include <map>
+#include <memory>
+
+#include <ompl/base/MotionValidator.h>
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/planners/fmt/FMT.h>
+#include <ompl/geometric/planners/informedtrees/ABITstar.h>
+#include <ompl/geometric/planners/informedtrees/AITstar.h>
+#include <ompl/geometric/planners/informedtrees/BITstar.h>
+#include <ompl/geometric/planners/kpiece/KPIECE1.h>
+#include <ompl/geometric/planners/prm/LazyPRMstar.h>
+#include <ompl/geometric/planners/prm/PRMstar.h>
+#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
+#include <ompl/geometric/planners/rrt/RRT.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/geometric/planners/rrt/RRTstar.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "hpcplan/core/check_counter.hpp"
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/core/stopwatch.hpp"
+#include "hpcplan/env/box_world.hpp"
+#include "hpcplan/env/sphere_world.hpp"
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace hpcplan::sampling {
+
+namespace {
+
+using Factory = std::function<ob::PlannerPtr(const ob::SpaceInformationPtr&)>;
+
+template <class P>
+Factory make() {
+  return [](const ob::SpaceInformationPtr& si) { return std::make_shared<P>(si); };
+}
+
+const std::map<std::string, Factory>& factories() {
+  static const std::map<std::string, Factory> table = {
+      {"rrt", make<og::RRT>()},         {"rrtconnect", make<og::RRTConnect>()},
+      {"rrtstar", make<og::RRTstar>()}, {"informedrrtstar", make<og::InformedRRTstar>()},
+      {"bitstar", make<og::BITstar>()}, {"abitstar", make<og::ABITstar>()},
+      {"aitstar", make<og::AITstar>()}, {"fmt", make<og::FMT>()},
+      {"prmstar", make<og::PRMstar>()}, {"lazyprmstar", make<og::LazyPRMstar>()},
+      {"kpiece", make<og::KPIECE1>()},
+  };
+  return table;
+}
+
+template <int D>
+env::Vec<D> to_point(const ob::State* s) {
+  const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
+  env::Vec<D> p;
+  for (int k = 0; k < D; ++k) p[k] = v->values[k];
+  return p;
+}
+
+template <class W>
+class ExactMotionValidator : public ob::MotionValidator {
+ public:
+  ExactMotionValidator(const ob::SpaceInformationPtr& si, const W& world)
+      : ob::MotionValidator(si), world_(world) {}
+  bool checkMotion(const ob::State* a, const ob::State* b) const override {
+    const bool ok = world_.segment_free(to_point<W::kDim>(a), to_point<W::kDim>(b));
+    (ok ? valid_ : invalid_)++;
+    return ok;
+  }
+  // The last valid point to within 1/64 of the motion, each prefix checked exactly.
+  bool checkMotion(const ob::State* a, const ob::State* b,
+                   std::pair<ob::State*, double>& last_valid) const override {
+    if (checkMotion(a, b)) return true;
+    const auto pa = to_point<W::kDim>(a), pb = to_point<W::kDim>(b);
+    double lo = 0.0, hi = 1.0;
+    for (int i = 0; i < 6; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (world_.segment_free(pa, env::lerp<W::kDim>(pa, pb, mid)) ? lo : hi) = mid;
+    }
+    last_valid.second = lo;
+    if (last_valid.first) si_->getStateSpace()->interpolate(a, b, lo, last_valid.first);
+    return false;
+  }
+
+ private:
+  const W& world_;
+};
+
+}  // namespace
+
+const std::vector<std::string>& world_ompl_planner_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const auto& [name, f] : factories()) n.push_back(name);
+    return n;
+  }();
+  return names;
+}
+
+template <class W>
+tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const env::Vec<W::kDim>& start,
+                                          const env::Vec<W::kDim>& goal, const std::string& name,
+                                          double time_s, std::uint64_t seed,
+                                          std::stop_token cancel) {
+  constexpr int D = W::kDim;
+  const auto it = factories().find(name);
+  if (it == factories().end()) throw InputError("unknown OMPL planner '" + name + "'");
+  // OMPL seeds its generators once per process, before the first one is made.
+  static const bool seeded = [&] {
+    ompl::RNG::setSeed(seed);
+    return true;
+  }();
+  (void)seeded;
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+
+  Stopwatch clock;
+  const std::uint64_t checks0 = CheckCounter::this_thread();
+  auto space = std::make_shared<ob::RealVectorStateSpace>(D);
+  ob::RealVectorBounds bounds(D);
+  const auto box = world.bounds();
+  for (int k = 0; k < D; ++k) bounds.setLow(k, box.lo[k]), bounds.setHigh(k, box.hi[k]);
+  space->setBounds(bounds);
+  auto si = std::make_shared<ob::SpaceInformation>(space);
+  si->setStateValidityChecker(
+      [&world](const ob::State* s) { return world.point_free(to_point<D>(s)); });
+  si->setMotionValidator(std::make_shared<ExactMotionValidator<W>>(si, world));
+  si->setup();
+  auto pdef = std::make_shared<ob::ProblemDefinition>(si);
+  ob::ScopedState<> s(space), g(space);
+  for (int k = 0; k < D; ++k) s[k] = start[k], g[k] = goal[k];
+  pdef->setStartAndGoalStates(s, g, 1e-9);
+  pdef->setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(si));
+  ob::PlannerPtr planner = it->second(si);
+  planner->setProblemDefinition(pdef);
+  planner->setup();
+  const ob::PlannerStatus status = planner->solve(ob::plannerOrTerminationCondition(
+      ob::timedPlannerTerminationCondition(time_s),
+      ob::PlannerTerminationCondition([cancel] { return cancel.stop_requested(); })));
+
+  tree::TreeResult<D> r;
+  r.time_ms = clock.milliseconds();
+  ob::PlannerData data(si);
+  planner->getPlannerData(data);
+  r.tree_size = data.numVertices();
+  if (status == ob::PlannerStatus::EXACT_SOLUTION && pdef->getSolutionPath()) {
+    const auto& path = *pdef->getSolutionPath()->as<og::PathGeometric>();
+    for (std::size_t i = 0; i < path.getStateCount(); ++i)
+      r.path.push_back(to_point<D>(path.getState(i)));
+    if (!r.path.empty() && !(r.path.front() == start)) r.path.insert(r.path.begin(), start);
+    if (!r.path.empty() && !(r.path.back() == goal)) {
+      if (world.segment_free(r.path.back(), goal))
+        r.path.push_back(goal);
+      else
+        r.path.clear();
+    }
+  }
+  if (!r.path.empty()) {
+    r.status = Status::solved;
+    r.length = env::polyline_length<D>(r.path);
+  } else {
+    r.status =
+        status == ob::PlannerStatus::TIMEOUT || status == ob::PlannerStatus::APPROXIMATE_SOLUTION
+            ? Status::timeout
+            : Status::no_path;
+  }
+  r.collision_checks = CheckCounter::this_thread() - checks0;
+  return r;
+}
+
+template tree::TreeResult<3> solve_with_ompl(const env::BoxWorld&, const env::Vec<3>&,
+                                             const env::Vec<3>&, const std::string&, double,
+                                             std::uint64_t, std::stop_token);
+template tree::TreeResult<2> solve_with_ompl(const env::SphereWorld&, const env::Vec<2>&,
+                                             const env::Vec<2>&, const std::string&, double,
+                                             std::uint64_t, std::stop_token);
+
+}  // namespace hpcplan::sampling

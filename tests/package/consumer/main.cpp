@@ -1,0 +1,29 @@
+// Plans on a box map, runs lattice A* on the GOG field, and links the MPI layer: the three
+// things a downstream user of the installed package is most likely to do first.
+#include <cstdio>
+
+#include "hpcplan/dist/grid_planner_mpi.hpp"
+#include "hpcplan/env/box_map_io.hpp"
+#include "hpcplan/mpi/communicator.hpp"
+#include "hpcplan/plan/grid_planner.hpp"
+#include "hpcplan/plan/world_planner.hpp"
+
+int main() {
+  using namespace hpcplan;
+  const env::BoxMap map = env::parse_box_map(
+      "boundary 0 0 0 10 10 10\nblock 4 0 0 6 8 10\nstart 1 1 1\ngoal 9 1 1\n", "consumer.txt");
+  plan::WorldPlanOptions o;
+  o.algo = "astar";
+  o.resolution = 0.5;
+  const auto p = plan::plan_in_world(map.world, *map.start, *map.goal, o);
+
+  GridProblem problem;
+  problem.dims = 3;
+  problem.extent = 30;
+  const GridReport g = solve_grid(problem, {});
+
+  std::printf("box map: %s %.3f; lattice: %s %.3f; launched by MPI: %d\n",
+              std::string(to_string(p.status)).c_str(), p.length,
+              std::string(to_string(g.status)).c_str(), g.cost, mpi::launched_by_mpi() ? 1 : 0);
+  return p.status == Status::solved && g.status == Status::solved ? 0 : 1;
+}

@@ -1,0 +1,55 @@
+#pragma once
+// RRT (LaValle 1998) with goal bias: grow one tree from the start by steps of at most eta
+// towards uniform samples (the goal itself with probability goal_bias); stop when a new vertex
+// sees the goal within one step, and join the goal exactly.
+#include "hpcplan/tree/tree_common.hpp"
+
+namespace hpcplan::tree {
+
+template <env::World W>
+TreeResult<W::kDim> rrt(const W& world, const env::Vec<W::kDim>& start,
+                        const env::Vec<W::kDim>& goal, const TreeOptions& o) {
+  constexpr int D = W::kDim;
+  check_query(world, start, goal);
+  Stopwatch clock;
+  Stop stop = run_stop(o);
+  const std::uint64_t checks0 = CheckCounter::this_thread();
+  const double step = step_of<D>(o, world.bounds());
+  TreeResult<D> r;
+  Tree<D> tree;
+  tree.add_root(start);
+  Sampler<D> sampler(world.bounds(), start, goal, o.seed);
+  auto done = [&](Status status) {
+    r.status = status;
+    r.tree_size = tree.points.size();
+    r.collision_checks = CheckCounter::this_thread() - checks0;
+    r.time_ms = clock.milliseconds();
+    if (status == Status::solved) {
+      r.path = tree.branch(static_cast<std::uint32_t>(tree.points.size() - 1));
+      r.length = env::polyline_length<D>(r.path);
+      r.first_time_ms = r.time_ms;
+      r.first_length = r.length;
+    }
+    return r;
+  };
+  if (world.segment_free(start, goal)) {
+    tree.add(goal, 0);
+    return done(Status::solved);
+  }
+  for (;;) {
+    if (const auto why = stop.poll()) return done(*why);
+    if (o.max_samples && r.samples >= o.max_samples) return done(Status::no_path);
+    ++r.samples;
+    const env::Vec<D> target = sampler.unit() < o.goal_bias ? goal : sampler.uniform();
+    const auto near = static_cast<std::uint32_t>(tree.index.nearest(target));
+    const env::Vec<D> q = steer<D>(tree.points[near], target, step);
+    if (!world.segment_free(tree.points[near], q)) continue;
+    const std::uint32_t added = tree.add(q, near);
+    if (env::distance<D>(q, goal) <= step && world.segment_free(q, goal)) {
+      if (!(q == goal)) tree.add(goal, added);
+      return done(Status::solved);
+    }
+  }
+}
+
+}  // namespace hpcplan::tree

@@ -1,0 +1,73 @@
+#pragma once
+// RRT-Connect (Kuffner and LaValle 2000): a tree from the start and one from the goal take
+// turns; one extends a step towards a sample, the other then steps greedily towards the new
+// vertex until it reaches it (the trees join) or is blocked.
+#include <array>
+
+#include "hpcplan/tree/tree_common.hpp"
+
+namespace hpcplan::tree {
+
+template <env::World W>
+TreeResult<W::kDim> rrt_connect(const W& world, const env::Vec<W::kDim>& start,
+                                const env::Vec<W::kDim>& goal, const TreeOptions& o) {
+  constexpr int D = W::kDim;
+  check_query(world, start, goal);
+  Stopwatch clock;
+  Stop stop = run_stop(o);
+  const std::uint64_t checks0 = CheckCounter::this_thread();
+  const double step = step_of<D>(o, world.bounds());
+  Tree<D> from_start, from_goal;
+  from_start.add_root(start);
+  from_goal.add_root(goal);
+  Sampler<D> sampler(world.bounds(), start, goal, o.seed);
+  TreeResult<D> r;
+  auto done = [&](Status status, std::uint32_t a = 0, std::uint32_t b = 0) {
+    r.status = status;
+    r.tree_size = from_start.points.size() + from_goal.points.size();
+    r.collision_checks = CheckCounter::this_thread() - checks0;
+    if (status == Status::solved) {
+      r.path = from_start.branch(a);
+      auto back = from_goal.branch(b);
+      // The joining vertex may be the same point in both trees.
+      std::size_t skip = r.path.back() == back.back() ? 1 : 0;
+      for (auto it = back.rbegin() + static_cast<std::ptrdiff_t>(skip); it != back.rend(); ++it)
+        r.path.push_back(*it);
+      r.length = env::polyline_length<D>(r.path);
+    }
+    r.time_ms = clock.milliseconds();
+    if (status == Status::solved) r.first_time_ms = r.time_ms, r.first_length = r.length;
+    return r;
+  };
+  if (world.segment_free(start, goal)) return done(Status::solved, 0, 0);
+
+  Tree<D>* a = &from_start;
+  Tree<D>* b = &from_goal;
+  for (;;) {
+    if (const auto why = stop.poll()) return done(*why);
+    if (o.max_samples && r.samples >= o.max_samples) return done(Status::no_path);
+    ++r.samples;
+    const env::Vec<D> target = sampler.uniform();
+    const auto near = static_cast<std::uint32_t>(a->index.nearest(target));
+    const env::Vec<D> q = steer<D>(a->points[near], target, step);
+    if (world.segment_free(a->points[near], q)) {
+      const std::uint32_t qa = a->add(q, near);
+      // Connect: the other tree walks towards q.
+      auto nb = static_cast<std::uint32_t>(b->index.nearest(q));
+      for (;;) {
+        const env::Vec<D> next = steer<D>(b->points[nb], q, step);
+        if (!world.segment_free(b->points[nb], next)) break;
+        if (next == q) {
+          // Joined: the start tree's vertex and the goal tree's vertex meet at the same point.
+          if (a == &from_start) return done(Status::solved, qa, nb);
+          const std::uint32_t in_goal_tree = qa;
+          return done(Status::solved, nb, in_goal_tree);
+        }
+        nb = b->add(next, nb);
+      }
+    }
+    std::swap(a, b);
+  }
+}
+
+}  // namespace hpcplan::tree
