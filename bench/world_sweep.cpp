@@ -17,6 +17,7 @@
 #include "hpcplan/env/box_map_io.hpp"
 #include "hpcplan/env/sphere_world.hpp"
 #include "hpcplan/io/path_csv.hpp"
+#include "hpcplan/plan/planner_registry.hpp"
 #include "hpcplan/plan/world_planner.hpp"
 
 namespace {
@@ -97,8 +98,11 @@ int main(int argc, char** argv) {
   try {
     std::vector<Config> configs;
     std::stringstream in(config_text);
-    for (std::string item; std::getline(in, item, ',');)
+    for (std::string item; std::getline(in, item, ',');) {
       configs.push_back(parse_config(item, base));
+      // Fail before the first run, not hours in: every name must be a registered planner.
+      plan::PlannerRegistry::get().require(kind, configs.back().options.algo);
+    }
     if (!paths_dir.empty()) std::filesystem::create_directories(paths_dir);
     std::string csv =
         "map,config,run,status,length,raw_length,time_ms,plan_ms,first_ms,expanded,tree_size,"

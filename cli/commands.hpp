@@ -20,5 +20,6 @@ Action register_grid_command(CLI::App& app);
 Action register_ompl_command(CLI::App& app);
 Action register_map3d_command(CLI::App& app);
 Action register_sphere2d_command(CLI::App& app);
+Action register_planners_command(CLI::App& app);
 
 }  // namespace hpcplan::cli

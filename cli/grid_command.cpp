@@ -80,10 +80,10 @@ Action register_grid_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("grid", "Grid BFS/A* on the GOG procedural obstacle field");
   auto& p = args->problem;
   add_number(cmd, "--dims", p.dims, "Dimensions, 1..16", 1, 16)->required();
-  cmd->add_option("--algo", args->algo, "astar | wastar | dijkstra | bfs")->capture_default_str();
-  CLI::Option* weight =
-      add_number(cmd, "--weight", args->weight, "Weighted A* weight w >= 1 (f = g + w h)", 1, 1e9)
-          ->capture_default_str();
+  cmd->add_option("--algo", args->algo,
+                  "Planner (hpcplan planners --world grid): " + planner_names("grid"))
+      ->capture_default_str();
+  CLI::Option* weight = add_param(cmd, "weight", args->weight)->capture_default_str();
   cmd->add_option("--heuristic", args->heuristic, "lattice (exact free-space cost) | euclidean")
       ->capture_default_str();
   add_number(cmd, "--seed", p.gog.seed, "GOG seed")->capture_default_str();
@@ -91,11 +91,8 @@ Action register_grid_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--start", args->start, "Start state c1,c2,... (default: corner 0, adjusted)");
   cmd->add_option("--goal", args->goal, "Goal state (default: corner extent-1, adjusted)");
-  add_number(cmd, "--max-states", args->options.max_states,
-             "Stored-state budget (0 = half of available memory)")
-      ->capture_default_str();
-  add_number(cmd, "--time-limit", args->options.time_limit_s, "Seconds (0 = none)", 0, 1e9)
-      ->capture_default_str();
+  add_param(cmd, "max_states", args->options.max_states)->capture_default_str();
+  add_param(cmd, "time_limit", args->options.time_limit_s)->capture_default_str();
   cmd->add_option("--connectivity", args->connectivity, "seed (1 or 2 axes) | full (d <= 4)")
       ->capture_default_str();
   add_number(cmd, "--threshold", p.gog.threshold, "GOG threshold c_v (0 = from --density)", 0, 49)

@@ -48,6 +48,7 @@ int main(int argc, char** argv) {
   hpcplan::cli::Action ompl = hpcplan::cli::register_ompl_command(app);
   hpcplan::cli::Action map3d = hpcplan::cli::register_map3d_command(app);
   hpcplan::cli::Action sphere2d = hpcplan::cli::register_sphere2d_command(app);
+  hpcplan::cli::Action planners = hpcplan::cli::register_planners_command(app);
   // Bad input is detected identically on every rank before any communication, so every rank
   // returns and only rank 0 speaks.
   try {
@@ -68,6 +69,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("ompl")) return ompl(context);
     if (app.got_subcommand("map3d")) return map3d(context);
     if (app.got_subcommand("sphere2d")) return sphere2d(context);
+    if (app.got_subcommand("planners")) return planners(context);
     return root ? report(hpcplan::kExitBadInput, "no subcommand given") : hpcplan::kExitBadInput;
   } catch (const hpcplan::InputError& e) {
     return root ? report(hpcplan::kExitBadInput, e.what()) : hpcplan::kExitBadInput;

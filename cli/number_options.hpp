@@ -9,8 +9,11 @@
 #include <cstdlib>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
+
+#include "hpcplan/plan/planner_registry.hpp"
 
 namespace hpcplan::cli {
 
@@ -61,6 +64,28 @@ CLI::Option* add_number(CLI::App* cmd, const std::string& name, Target& target,
   using T = typename NumberOf<Target>::type;
   return add_number(cmd, name, target, help, std::numeric_limits<T>::lowest(),
                     std::numeric_limits<T>::max());
+}
+
+// An option the planner registry declares: its name, range and help come from there, so the
+// CLI, `hpcplan planners` and the errors agree.
+template <class Target>
+CLI::Option* add_param(CLI::App* cmd, std::string_view name, Target& target) {
+  const plan::ParamSpec& p = plan::PlannerRegistry::get().param(name);
+  if constexpr (std::is_same_v<Target, bool>) {
+    return cmd->add_flag(p.option(), target, p.help);
+  } else if constexpr (std::is_same_v<Target, std::string>) {
+    return cmd->add_option(p.option(), target, p.help)->check(CLI::IsMember(p.choices));
+  } else {
+    return add_number(cmd, p.option(), target, p.help, p.lo, p.hi);
+  }
+}
+
+// "a|b|c" of a setting's planners, for --algo's help.
+inline std::string planner_names(std::string_view world) {
+  std::string s;
+  for (const std::string& n : plan::PlannerRegistry::get().names(world))
+    s += (s.empty() ? "" : "|") + n;
+  return s;
 }
 
 }  // namespace hpcplan::cli

@@ -78,8 +78,7 @@ Action register_ompl_command(CLI::App& app) {
   auto& o = args->options;
   add_number(cmd, "--dims", o.dims, "Dimensions, 2..10", 2, 10)->required();
   cmd->add_option("--planners", o.planners,
-                  "Comma-separated: gridastar, gridastar_lattice, bitstar, fmt, fmt_radius, "
-                  "abitstar, aitstar, rrtconnect, rrtstar, informedrrtstar, prmstar")
+                  "Comma-separated (hpcplan planners --world ompl): " + planner_names("ompl"))
       ->delimiter(',')
       ->capture_default_str();
   add_number(cmd, "--time", o.time_s, "Seconds per run", 1e-6, 3600)->capture_default_str();
@@ -95,10 +94,8 @@ Action register_ompl_command(CLI::App& app) {
   add_number(cmd, "--resolution", o.resolution_cells,
              "Discrete motion checks: spacing in cell widths, (0, 1]", 1e-9, 1)
       ->capture_default_str();
-  add_number(cmd, "--grid-weight", o.grid_weight, "Grid planner weight (1 = A*)", 1, 1e9)
-      ->capture_default_str();
-  cmd->add_flag("--no-shortcut", args->no_shortcut,
-                "gridastar keeps its lattice path (gridastar_lattice always does)");
+  add_param(cmd, "grid_weight", o.grid_weight)->capture_default_str();
+  add_param(cmd, "no_shortcut", args->no_shortcut);
   cmd->add_option("--log", args->log, "OMPL benchmark log (for ompl_benchmark_statistics)");
   cmd->add_option("--csv", args->csv, "One row per planner run");
   cmd->add_flag("--verbose", args->verbose, "Keep OMPL's informational messages");

@@ -126,38 +126,25 @@ int run(const WorldArgs& a, const Map& map) {
   return kExitOk;
 }
 
-void add_common(CLI::App* cmd, const std::shared_ptr<WorldArgs>& args, const char* point,
-                double resolution) {
+void add_common(CLI::App* cmd, const std::shared_ptr<WorldArgs>& args, const std::string& world,
+                const char* point, double resolution) {
   auto& o = args->options;
   o.resolution = resolution;
   cmd->add_option("--map", args->map, "World file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--start", args->start, std::string("Start ") + point + " (default: the map's)");
   cmd->add_option("--goal", args->goal, std::string("Goal ") + point + " (default: the map's)");
   cmd->add_option("--algo", o.algo,
-                  "astar|wastar|dijkstra|thetastar|visgraph|rrt|birrt|rrtstar|hybrid|"
-                  "hybrid_pick|hybrid_sample|ompl:<name>")
+                  "Planner (hpcplan planners --world " + world + "): " + planner_names(world))
       ->capture_default_str();
-  add_number(cmd, "--resolution", o.resolution, "Grid spacing of the searches", 1e-9, 1e9)
-      ->capture_default_str();
-  add_number(cmd, "--spacing", o.spacing,
-             "visgraph: bend points this far apart along obstacle edges (0 = a 40th of the "
-             "world's largest side)",
-             0, 1e9)
-      ->capture_default_str();
-  add_number(cmd, "--weight", o.weight, "Heuristic weight of wastar (>= 1)", 1, 1e9)
-      ->capture_default_str();
-  add_number(cmd, "--seed", o.seed, "Random seed")->capture_default_str();
-  add_number(cmd, "--time", o.time_s,
-             "Seconds: RRT* and OMPL's anytime planners refine until then; others give up", 1e-6,
-             1e9)
-      ->capture_default_str();
-  add_number(cmd, "--step", o.step, "Tree planners' step (0 = a twentieth of the world)", 0, 1e9)
-      ->capture_default_str();
-  add_number(cmd, "--samples", o.samples_per_expansion, "Hybrid: random points drawn per expansion",
-             1, 1000000)
-      ->capture_default_str();
-  add_number(cmd, "--max-states", o.max_states, "Grid searches: stop beyond this many states");
-  cmd->add_flag("--shortcut", o.shortcut, "Shortcut and tighten the path");
+  add_param(cmd, "resolution", o.resolution)->capture_default_str();
+  add_param(cmd, "spacing", o.spacing)->capture_default_str();
+  add_param(cmd, "weight", o.weight)->capture_default_str();
+  add_param(cmd, "seed", o.seed)->capture_default_str();
+  add_param(cmd, "time", o.time_s)->capture_default_str();
+  add_param(cmd, "step", o.step)->capture_default_str();
+  add_param(cmd, "samples", o.samples_per_expansion)->capture_default_str();
+  add_param(cmd, "max_states", o.max_states);
+  add_param(cmd, "shortcut", o.shortcut);
   cmd->add_flag("--json", args->json, "Print one JSON object instead of a summary");
   cmd->add_option("--path-out", args->path_out, "Write the path as CSV (atomically)");
   cmd->add_option("--output", args->output, "Also write the JSON result to this file (atomically)");
@@ -167,7 +154,7 @@ template <class Load>
 Action register_world_command(CLI::App& app, const std::string& name, const std::string& about,
                               const char* point, double resolution, Load load) {
   auto args = std::make_shared<WorldArgs>();
-  add_common(app.add_subcommand(name, about), args, point, resolution);
+  add_common(app.add_subcommand(name, about), args, name, point, resolution);
   return [args, name, load](const Context& context) {
     if (context.comm && context.comm->size() > 1)
       throw InputError(name + " runs in one process; start it without mpirun");

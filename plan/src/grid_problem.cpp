@@ -2,20 +2,67 @@
 
 #include <charconv>
 #include <cmath>
+#include <stdexcept>
+#include <vector>
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/format.hpp"
 #include "hpcplan/graph/packed_key.hpp"
+#include "hpcplan/plan/planner_registry.hpp"
 
 namespace hpcplan {
 
+namespace {
+
+// The GOG lattice's planners: the registry's "grid" entries and the enum they run as.
+struct GridEntry {
+  GridAlgorithm algorithm;
+  plan::PlannerSpec spec;
+};
+
+const std::vector<GridEntry>& grid_entries() {
+  static const std::vector<GridEntry> table = [] {
+    const std::vector<std::string> worlds{"grid"};
+    const std::vector<std::string> common{"heuristic", "connectivity", "max_states", "time_limit"};
+    std::vector<std::string> weighted = common;
+    weighted.insert(weighted.begin(), "weight");
+    return std::vector<GridEntry>{
+        {GridAlgorithm::astar, {"astar", "grid search", worlds, common, "A* (f = g + h), optimal"}},
+        {GridAlgorithm::wastar,
+         {"wastar", "grid search", worlds, weighted,
+          "weighted A* (f = g + w h), closed states not reopened, cost <= w x optimal"}},
+        {GridAlgorithm::dijkstra,
+         {"dijkstra",
+          "grid search",
+          worlds,
+          {"connectivity", "max_states", "time_limit"},
+          "Dijkstra (h = 0), optimal"}},
+        {GridAlgorithm::bfs,
+         {"bfs",
+          "grid search",
+          worlds,
+          {"connectivity", "max_states", "time_limit"},
+          "breadth-first search: fewest moves"}},
+    };
+  }();
+  return table;
+}
+
+}  // namespace
+
+namespace plan {
+std::vector<PlannerSpec> grid_planner_specs() {
+  std::vector<PlannerSpec> specs;
+  for (const GridEntry& e : grid_entries()) specs.push_back(e.spec);
+  return specs;
+}
+}  // namespace plan
+
 GridAlgorithm parse_grid_algorithm(std::string_view name) {
-  if (name == "astar") return GridAlgorithm::astar;
-  if (name == "wastar") return GridAlgorithm::wastar;
-  if (name == "dijkstra") return GridAlgorithm::dijkstra;
-  if (name == "bfs") return GridAlgorithm::bfs;
-  throw InputError("unknown algorithm '" + std::string(name) +
-                   "' (expected astar, wastar, dijkstra or bfs)");
+  const plan::PlannerSpec& spec = plan::PlannerRegistry::get().require("grid", name);
+  for (const GridEntry& e : grid_entries())
+    if (e.spec.name == spec.name) return e.algorithm;
+  throw std::logic_error("grid planner '" + spec.name + "' has no algorithm");
 }
 
 HeuristicKind parse_heuristic(std::string_view name) {

@@ -13,13 +13,6 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/fmt/FMT.h>
-#include <ompl/geometric/planners/informedtrees/ABITstar.h>
-#include <ompl/geometric/planners/informedtrees/AITstar.h>
-#include <ompl/geometric/planners/informedtrees/BITstar.h>
-#include <ompl/geometric/planners/prm/PRMstar.h>
-#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
-#include <ompl/geometric/planners/rrt/RRTConnect.h>
-#include <ompl/geometric/planners/rrt/RRTstar.h>
 #include <ompl/tools/benchmark/Benchmark.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
@@ -30,7 +23,9 @@
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/plan/grid_astar_planner.hpp"
 #include "hpcplan/plan/grid_problem.hpp"
+#include "hpcplan/plan/planner_registry.hpp"
 #include "hpcplan/sampling/gog_world.hpp"
+#include "hpcplan/sampling/ompl_planners.hpp"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -42,28 +37,12 @@ using namespace sampling;
 
 namespace {
 
-// User-facing name -> how to build it. The OMPL names must be unique within one log.
+// User-facing name -> how to build it: the grid planner in two forms, then every planner of
+// sampling's one OMPL table. The OMPL names must be unique within one log.
 struct PlannerKind {
   std::string ompl_name;
   std::function<ob::PlannerPtr(const GogWorld&, const OmplBenchOptions&)> make;
 };
-
-// OMPL's Benchmark samples a planner's progress properties from a second thread while the
-// planner runs; several planners read their unsynchronised data structures there (BIT*'s
-// GNAT, FMT*'s neighbourhoods), which crashed 20 s runs at 4D. Improvements come through the
-// intermediate-solution callback instead, so the progress properties are dropped.
-template <class P>
-class WithoutProgress : public P {
- public:
-  explicit WithoutProgress(const ob::SpaceInformationPtr& si) : P(si) {
-    this->plannerProgressProperties_.clear();
-  }
-};
-
-template <class P>
-ob::PlannerPtr quiet(const GogWorld& w) {
-  return std::make_shared<WithoutProgress<P>>(w.si);
-}
 
 double free_volume(const GogField& field) {
   return std::pow(static_cast<double>(field.extent()), field.dims()) *
@@ -78,56 +57,34 @@ ob::PlannerPtr grid(const GogWorld& w, const OmplBenchOptions& o, bool smoothing
   return p;
 }
 
-ob::PlannerPtr fmt(const GogWorld& w, const OmplBenchOptions& o, bool nearest_k) {
-  auto p = std::make_shared<WithoutProgress<og::FMT>>(w.si);
-  p->setNumSamples(fmt_samples(o.dims));
-  p->setFreeSpaceVolume(free_volume(*w.field));
-  if (!nearest_k) {
-    p->setNearestK(false);
-    p->setRadiusMultiplier(1.0);
+// FMT* (either connection rule) gets seed 002 eq. 1's sample count and the field's free volume.
+ob::PlannerPtr from_table(const OmplPlannerKind& kind, const GogWorld& w,
+                          const OmplBenchOptions& o) {
+  ob::PlannerPtr p = kind.make(w.si);
+  if (auto* fmt = dynamic_cast<og::FMT*>(p.get())) {
+    fmt->setNumSamples(fmt_samples(o.dims));
+    fmt->setFreeSpaceVolume(free_volume(*w.field));
   }
   return p;
 }
 
 const std::map<std::string, PlannerKind>& planner_table() {
-  static const std::map<std::string, PlannerKind> table = {
-      {"gridastar",
-       {"GridAStar",
-        [](const GogWorld& w, const OmplBenchOptions& o) { return grid(w, o, o.shortcut); }}},
-      // The lattice path as found, for the time and quality of the search alone.
-      {"gridastar_lattice",
-       {"GridAStarLattice",
-        [](const GogWorld& w, const OmplBenchOptions& o) { return grid(w, o, false); }}},
-      {"bitstar",
-       {"kBITstar",
-        [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::BITstar>(w); }}},
-      {"abitstar",
-       {"kABITstar",
-        [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::ABITstar>(w); }}},
-      {"aitstar",
-       {"AITstar",
-        [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::AITstar>(w); }}},
-      // Seed 002 eq. 1 samples, k-nearest connections (OMPL's default).
-      {"fmt",
-       {"FMT", [](const GogWorld& w, const OmplBenchOptions& o) { return fmt(w, o, true); }}},
-      // The same samples with radius connections: the k-nearest rule's k grows with d, the
-      // radius rule's neighbourhoods shrink with the free volume instead.
-      {"fmt_radius",
-       {"FMTradius",
-        [](const GogWorld& w, const OmplBenchOptions& o) { return fmt(w, o, false); }}},
-      {"rrtconnect",
-       {"RRTConnect",
-        [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::RRTConnect>(w); }}},
-      {"rrtstar",
-       {"RRTstar",
-        [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::RRTstar>(w); }}},
-      {"informedrrtstar",
-       {"InformedRRTstar",
-        [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::InformedRRTstar>(w); }}},
-      {"prmstar",
-       {"PRMstar",
-        [](const GogWorld& w, const OmplBenchOptions&) { return quiet<og::PRMstar>(w); }}},
-  };
+  static const std::map<std::string, PlannerKind> table = [] {
+    std::map<std::string, PlannerKind> t = {
+        {"gridastar",
+         {"GridAStar",
+          [](const GogWorld& w, const OmplBenchOptions& o) { return grid(w, o, o.shortcut); }}},
+        // The lattice path as found, for the time and quality of the search alone.
+        {"gridastar_lattice",
+         {"GridAStarLattice",
+          [](const GogWorld& w, const OmplBenchOptions& o) { return grid(w, o, false); }}},
+    };
+    for (const OmplPlannerKind& k : ompl_planners())
+      t[k.name] = {k.ompl_name, [&k](const GogWorld& w, const OmplBenchOptions& o) {
+                     return from_table(k, w, o);
+                   }};
+    return t;
+  }();
   return table;
 }
 
@@ -140,12 +97,26 @@ std::string csv_number(double v, const char* format = "%.6f") {
 
 }  // namespace
 
+std::vector<PlannerSpec> ompl_harness_specs() {
+  std::vector<PlannerSpec> specs = {
+      {"gridastar",
+       "grid search",
+       {"ompl"},
+       {"grid_weight", "no_shortcut"},
+       "the GOG grid planner inside OMPL: lattice A*, then simplified and tightened"},
+      {"gridastar_lattice",
+       "grid search",
+       {"ompl"},
+       {"grid_weight"},
+       "the GOG grid planner inside OMPL, its lattice path as found"},
+  };
+  for (const OmplPlannerKind& k : ompl_planners())
+    specs.push_back({k.name, "ompl", {"ompl"}, {}, k.help});
+  return specs;
+}
+
 const std::vector<std::string>& known_planners() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> n;
-    for (const auto& [name, kind] : planner_table()) n.push_back(name);
-    return n;
-  }();
+  static const std::vector<std::string> names = PlannerRegistry::get().names("ompl");
   return names;
 }
 
@@ -165,11 +136,7 @@ void validate(const OmplBenchOptions& o) {
   if (o.runs < 1 || o.runs > 10000) throw InputError("--runs must be in 1..10000");
   if (o.planners.empty()) throw InputError("--planners: name at least one planner");
   for (std::size_t i = 0; i < o.planners.size(); ++i) {
-    if (!planner_table().contains(o.planners[i])) {
-      std::string list;
-      for (const auto& n : known_planners()) list += (list.empty() ? "" : ", ") + n;
-      throw InputError("unknown planner '" + o.planners[i] + "' (known: " + list + ")");
-    }
+    PlannerRegistry::get().require("ompl", o.planners[i]);
     for (std::size_t j = 0; j < i; ++j)
       if (o.planners[j] == o.planners[i])
         throw InputError("planner '" + o.planners[i] + "' is listed twice");

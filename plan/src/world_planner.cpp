@@ -11,6 +11,8 @@
 #include "hpcplan/env/sphere_world.hpp"
 #include "hpcplan/graph/continuous_grid.hpp"
 #include "hpcplan/graph/visibility_graph.hpp"
+#include "hpcplan/plan/planner_registry.hpp"
+#include "hpcplan/sampling/ompl_planners.hpp"
 #include "hpcplan/sampling/world_ompl.hpp"
 #include "hpcplan/search/best_first.hpp"
 #include "hpcplan/search/dense_visited_map.hpp"
@@ -20,17 +22,6 @@
 #include "hpcplan/tree/rrt_star.hpp"
 
 namespace hpcplan::plan {
-
-const std::vector<std::string>& world_algorithms() {
-  static const std::vector<std::string> names = {
-      "astar",   "wastar", "dijkstra",    "thetastar",     "rrt",     "birrt",
-      "rrtstar", "hybrid", "hybrid_pick", "hybrid_sample", "visgraph"};
-  return names;
-}
-
-const std::vector<std::string>& world_ompl_planners() {
-  return sampling::world_ompl_planner_names();
-}
 
 template <class W>
 std::string path_problem(const W& world, const std::vector<env::Vec<W::kDim>>& path,
@@ -122,6 +113,9 @@ void run_visibility(const W& world, const env::Vec<W::kDim>& start, const env::V
   plan.tree_size = graph.vertex_count();
 }
 
+template <int D>
+void take_tree_result(tree::TreeResult<D> r, WorldPlan<D>& plan);
+
 template <class W>
 void run_tree(const W& world, const env::Vec<W::kDim>& start, const env::Vec<W::kDim>& goal,
               const WorldPlanOptions& o, WorldPlan<W::kDim>& plan) {
@@ -134,14 +128,108 @@ void run_tree(const W& world, const env::Vec<W::kDim>& start, const env::Vec<W::
     r = tree::rrt(world, start, goal, to);
   else if (o.algo == "birrt")
     r = tree::rrt_connect(world, start, goal, to);
-  else if (o.algo == "rrtstar")
-    r = tree::rrt_star(world, start, goal, to);
   else
-    r = sampling::solve_with_ompl(world, start, goal, o.algo.substr(5), o.time_s, o.seed, o.cancel);
+    r = tree::rrt_star(world, start, goal, to);
+  take_tree_result(std::move(r), plan);
+}
+
+template <class W>
+void run_ompl(const W& world, const env::Vec<W::kDim>& start, const env::Vec<W::kDim>& goal,
+              const WorldPlanOptions& o, WorldPlan<W::kDim>& plan) {
+  take_tree_result(
+      sampling::solve_with_ompl(world, start, goal, o.algo.substr(5), o.time_s, o.seed, o.cancel),
+      plan);
+}
+
+template <int D>
+void take_tree_result(tree::TreeResult<D> r, WorldPlan<D>& plan) {
   plan.status = r.status;
   plan.path = std::move(r.path);
   plan.tree_size = r.tree_size;
   plan.first_time_ms = r.first_time_ms;
+}
+
+// How each planner runs; its registry entry sits beside it.
+enum class Runner { grid, visibility, tree, ompl };
+
+struct WorldEntry {
+  PlannerSpec spec;
+  Runner runner;
+};
+
+template <class W>
+void run(Runner r, const W& world, const env::Vec<W::kDim>& start, const env::Vec<W::kDim>& goal,
+         const WorldPlanOptions& o, WorldPlan<W::kDim>& plan) {
+  switch (r) {
+    case Runner::grid:
+      return run_grid(world, start, goal, o, plan);
+    case Runner::visibility:
+      return run_visibility(world, start, goal, o, plan);
+    case Runner::tree:
+      return run_tree(world, start, goal, o, plan);
+    case Runner::ompl:
+      return run_ompl(world, start, goal, o, plan);
+  }
+}
+
+const std::vector<WorldEntry>& world_entries() {
+  static const std::vector<WorldEntry> table = [] {
+    const std::vector<std::string> worlds{"map3d", "sphere2d"};
+    const std::vector<std::string> grid{"resolution", "max_states", "shortcut"};
+    const std::vector<std::string> tree{"time", "seed", "step", "shortcut"};
+    std::vector<WorldEntry> t = {
+        {{"astar", "grid search", worlds, grid,
+          "A* on the 3^D-1-connected grid over the world (exact edges, octile heuristic)"},
+         Runner::grid},
+        {{"wastar",
+          "grid search",
+          worlds,
+          {"resolution", "weight", "max_states", "shortcut"},
+          "weighted A* on the grid: cost <= w x the grid optimum"},
+         Runner::grid},
+        {{"dijkstra", "grid search", worlds, grid, "Dijkstra on the grid (the A* oracle)"},
+         Runner::grid},
+        {{"thetastar", "any-angle", worlds, grid,
+          "Lazy Theta* on the grid: parents by line of sight"},
+         Runner::grid},
+        {{"visgraph",
+          "visibility graph",
+          worlds,
+          {"spacing", "max_states", "shortcut"},
+          "A* on the visibility graph of sampled obstacle edges (shortest paths)"},
+         Runner::visibility},
+        {{"rrt", "tree", worlds, tree, "RRT with goal bias, ends at the first path"}, Runner::tree},
+        {{"birrt", "tree", worlds, tree, "RRT-Connect, ends at the first path"}, Runner::tree},
+        {{"rrtstar", "tree", worlds, tree, "informed RRT*, refines until --time"}, Runner::tree},
+        {{"hybrid",
+          "hybrid",
+          worlds,
+          {"resolution", "samples", "seed", "time", "max_states", "shortcut"},
+          "seed 003 hybrid: random open-list picks and sampled successors"},
+         Runner::grid},
+        {{"hybrid_pick",
+          "hybrid",
+          worlds,
+          {"resolution", "seed", "time", "max_states", "shortcut"},
+          "seed 003 hybrid: random open-list picks only"},
+         Runner::grid},
+        {{"hybrid_sample",
+          "hybrid",
+          worlds,
+          {"resolution", "samples", "seed", "time", "max_states", "shortcut"},
+          "seed 003 hybrid: sampled successors in A* order"},
+         Runner::grid},
+    };
+    for (const sampling::OmplPlannerKind& k : sampling::ompl_planners())
+      t.push_back({{"ompl:" + k.name, "ompl", worlds, tree, k.help}, Runner::ompl});
+    return t;
+  }();
+  return table;
+}
+
+template <class W>
+constexpr const char* setting_of() {
+  return W::kDim == 3 ? "map3d" : "sphere2d";
 }
 
 }  // namespace
@@ -151,22 +239,9 @@ WorldPlan<W::kDim> plan_in_world(const W& world, const env::Vec<W::kDim>& start,
                                  const env::Vec<W::kDim>& goal, const WorldPlanOptions& o) {
   constexpr int D = W::kDim;
   tree::check_query(world, start, goal);
-  const auto& names = world_algorithms();
-  const bool grid = o.algo == "astar" || o.algo == "wastar" || o.algo == "dijkstra" ||
-                    o.algo == "thetastar" || o.algo.starts_with("hybrid");
-  const bool known = std::find(names.begin(), names.end(), o.algo) != names.end();
-  if (o.algo.starts_with("ompl:")) {
-    const auto& ompl = world_ompl_planners();
-    if (std::find(ompl.begin(), ompl.end(), o.algo.substr(5)) == ompl.end()) {
-      std::string list;
-      for (const auto& n : ompl) list += (list.empty() ? "" : ", ") + n;
-      throw InputError("unknown OMPL planner '" + o.algo.substr(5) + "' (known: " + list + ")");
-    }
-  } else if (!known) {
-    throw InputError("unknown algorithm '" + o.algo +
-                     "' (astar, wastar, dijkstra, thetastar, visgraph, rrt, birrt, rrtstar, "
-                     "hybrid, hybrid_pick, hybrid_sample, ompl:<name>)");
-  }
+  PlannerRegistry::get().require(setting_of<W>(), o.algo);
+  const auto entry = std::find_if(world_entries().begin(), world_entries().end(),
+                                  [&](const WorldEntry& e) { return e.spec.name == o.algo; });
   if (!(o.time_s > 0) || !std::isfinite(o.time_s)) throw InputError("--time must be positive");
   if (o.step < 0 || !std::isfinite(o.step)) throw InputError("--step must not be negative");
   if (o.samples_per_expansion < 1) throw InputError("--samples must be at least 1");
@@ -177,12 +252,7 @@ WorldPlan<W::kDim> plan_in_world(const W& world, const env::Vec<W::kDim>& start,
   Stopwatch clock;
   if (o.spacing < 0 || !std::isfinite(o.spacing))
     throw InputError("--spacing must be a positive number");
-  if (grid)
-    run_grid(world, start, goal, o, plan);
-  else if (o.algo == "visgraph")
-    run_visibility(world, start, goal, o, plan);
-  else
-    run_tree(world, start, goal, o, plan);
+  run(entry->runner, world, start, goal, o, plan);
   plan.plan_ms = clock.milliseconds();
   if (plan.status == Status::solved) {
     plan.raw_length = env::polyline_length<D>(plan.path);
@@ -198,6 +268,12 @@ WorldPlan<W::kDim> plan_in_world(const W& world, const env::Vec<W::kDim>& start,
     plan.path.clear();
   }
   return plan;
+}
+
+std::vector<PlannerSpec> world_planner_specs() {
+  std::vector<PlannerSpec> specs;
+  for (const WorldEntry& e : world_entries()) specs.push_back(e.spec);
+  return specs;
 }
 
 template WorldPlan<3> plan_in_world(const env::BoxWorld&, const env::Vec<3>&, const env::Vec<3>&,

@@ -11,17 +11,6 @@
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/PathGeometric.h>
-#include <ompl/geometric/planners/fmt/FMT.h>
-#include <ompl/geometric/planners/informedtrees/ABITstar.h>
-#include <ompl/geometric/planners/informedtrees/AITstar.h>
-#include <ompl/geometric/planners/informedtrees/BITstar.h>
-#include <ompl/geometric/planners/kpiece/KPIECE1.h>
-#include <ompl/geometric/planners/prm/LazyPRMstar.h>
-#include <ompl/geometric/planners/prm/PRMstar.h>
-#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
-#include <ompl/geometric/planners/rrt/RRT.h>
-#include <ompl/geometric/planners/rrt/RRTConnect.h>
-#include <ompl/geometric/planners/rrt/RRTstar.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -30,6 +19,7 @@
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/env/box_world.hpp"
 #include "hpcplan/env/sphere_world.hpp"
+#include "hpcplan/sampling/ompl_planners.hpp"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -37,25 +27,6 @@ namespace og = ompl::geometric;
 namespace hpcplan::sampling {
 
 namespace {
-
-using Factory = std::function<ob::PlannerPtr(const ob::SpaceInformationPtr&)>;
-
-template <class P>
-Factory make() {
-  return [](const ob::SpaceInformationPtr& si) { return std::make_shared<P>(si); };
-}
-
-const std::map<std::string, Factory>& factories() {
-  static const std::map<std::string, Factory> table = {
-      {"rrt", make<og::RRT>()},         {"rrtconnect", make<og::RRTConnect>()},
-      {"rrtstar", make<og::RRTstar>()}, {"informedrrtstar", make<og::InformedRRTstar>()},
-      {"bitstar", make<og::BITstar>()}, {"abitstar", make<og::ABITstar>()},
-      {"aitstar", make<og::AITstar>()}, {"fmt", make<og::FMT>()},
-      {"prmstar", make<og::PRMstar>()}, {"lazyprmstar", make<og::LazyPRMstar>()},
-      {"kpiece", make<og::KPIECE1>()},
-  };
-  return table;
-}
 
 template <int D>
 env::Vec<D> to_point(const ob::State* s) {
@@ -96,23 +67,14 @@ class ExactMotionValidator : public ob::MotionValidator {
 
 }  // namespace
 
-const std::vector<std::string>& world_ompl_planner_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> n;
-    for (const auto& [name, f] : factories()) n.push_back(name);
-    return n;
-  }();
-  return names;
-}
-
 template <class W>
 tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const env::Vec<W::kDim>& start,
                                           const env::Vec<W::kDim>& goal, const std::string& name,
                                           double time_s, std::uint64_t seed,
                                           std::stop_token cancel) {
   constexpr int D = W::kDim;
-  const auto it = factories().find(name);
-  if (it == factories().end()) throw InputError("unknown OMPL planner '" + name + "'");
+  const OmplPlannerKind* kind = find_ompl_planner(name);
+  if (kind == nullptr) throw InputError("unknown OMPL planner '" + name + "'");
   // OMPL seeds its generators once per process, before the first one is made.
   static const bool seeded = [&] {
     ompl::RNG::setSeed(seed);
@@ -138,7 +100,7 @@ tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const env::Vec<W::kDim
   for (int k = 0; k < D; ++k) s[k] = start[k], g[k] = goal[k];
   pdef->setStartAndGoalStates(s, g, 1e-9);
   pdef->setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(si));
-  ob::PlannerPtr planner = it->second(si);
+  ob::PlannerPtr planner = kind->make(si);
   planner->setProblemDefinition(pdef);
   planner->setup();
   const ob::PlannerStatus status = planner->solve(ob::plannerOrTerminationCondition(

@@ -75,7 +75,7 @@ expect_bad "crlf.txt:2: 'oops' is not a finite number" map3d --map "$tmp/crlf.tx
 expect_bad "inside the block of line" map3d --map "$MAPS/single_box.txt" --start 5,5,5
 expect_bad "goal (11, 5, 5) is outside the boundary" map3d --map "$MAPS/single_box.txt" --goal 11,5,5
 expect_bad "unknown algorithm 'dfs'" map3d --map "$MAPS/single_box.txt" --algo dfs
-expect_bad "unknown OMPL planner 'nope'" map3d --map "$MAPS/single_box.txt" --algo ompl:nope
+expect_bad "unknown algorithm 'ompl:nope' for map3d" map3d --map "$MAPS/single_box.txt" --algo ompl:nope
 expect_bad "needs 3 comma-separated" map3d --map "$MAPS/single_box.txt" --start 1,2
 expect_bad "resolution" map3d --map "$MAPS/single_box.txt" --resolution -1
 expect_bad "resolution" map3d --map "$MAPS/single_box.txt" --resolution 50

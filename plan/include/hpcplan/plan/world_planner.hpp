@@ -17,8 +17,8 @@
 namespace hpcplan::plan {
 
 struct WorldPlanOptions {
-  // astar, wastar, dijkstra, thetastar, visgraph, rrt, birrt, rrtstar, hybrid, hybrid_pick,
-  // hybrid_sample, ompl:<name>
+  // a map3d/sphere2d planner of the registry (hpcplan planners): astar, wastar, dijkstra,
+  // thetastar, visgraph, rrt, birrt, rrtstar, hybrid, hybrid_pick, hybrid_sample, ompl:<name>
   std::string algo = "astar";
   double resolution = 0.1;  // grid searches
   double weight = 2.0;      // wastar
@@ -46,9 +46,6 @@ struct WorldPlan {
   std::uint64_t tree_size = 0;  // tree planners: vertices; grid searches: states stored
   std::uint64_t collision_checks = 0;
 };
-
-const std::vector<std::string>& world_algorithms();  // names without the ompl: ones
-const std::vector<std::string>& world_ompl_planners();
 
 // Throws InputError for an unknown algorithm, bad options, or a start/goal that is not free.
 template <class W>

@@ -10,8 +10,6 @@
 
 namespace hpcplan::sampling {
 
-const std::vector<std::string>& world_ompl_planner_names();
-
 // Runs OMPL planner `name` for up to time_s seconds (anytime planners use all of it). Only an
 // exact solution counts: the path is completed to the exact goal when OMPL stops within its
 // goal threshold and that last segment is free. `cancel` ends it early (OMPL's termination
