@@ -1,10 +1,7 @@
 #include "hpcplan/plan/grid_astar_planner.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <memory>
-#include <stop_token>
-#include <thread>
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/goals/GoalState.h>
@@ -14,6 +11,7 @@
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/sampling/path_tightening.hpp"
+#include "hpcplan/sampling/ptc_stop.hpp"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -66,20 +64,8 @@ ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition&
   options.time_limit_s = time_limit_s_;
   options.keep_path = true;
   {
-    // OMPL's termination condition is a predicate; the search polls a stop token. A watcher
-    // thread evaluates the predicate every millisecond and triggers the token, so the search
-    // ends within about a millisecond of the condition turning true.
-    std::stop_source ptc_fired;
-    options.cancel = ptc_fired.get_token();
-    std::jthread watcher([&ptc, &ptc_fired](std::stop_token search_done) {
-      while (!search_done.stop_requested()) {
-        if (ptc()) {
-          ptc_fired.request_stop();
-          return;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-      }
-    });
+    const sampling::PtcStopSource ptc_stop(ptc);
+    options.cancel = ptc_stop.token();
     last_ = solve_grid(problem, options);
   }
   world_.checker->add_checks(last_.counters.collision_checks);

@@ -1,8 +1,14 @@
 #include "hpcplan/sampling/path_tightening.hpp"
 
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
+
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/env/path_shortcut.hpp"
+#include "hpcplan/sampling/ptc_stop.hpp"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -11,43 +17,74 @@ namespace hpcplan::sampling {
 
 namespace {
 
-// Removes waypoint i whenever the motion from its predecessor to its successor is valid.
-void drop_redundant(const ob::SpaceInformationPtr& si, std::vector<ob::State*>& states) {
-  std::size_t i = 1;
-  while (i + 1 < states.size()) {
-    if (si->checkMotion(states[i - 1], states[i + 1])) {
-      si->freeState(states[i]);
-      states.erase(states.begin() + static_cast<long>(i));
-    } else {
-      ++i;
-    }
-  }
-}
+constexpr int kMaxDims = 16;
 
-void subdivide(const ob::SpaceInformationPtr& si, std::vector<ob::State*>& states,
-               double max_segment) {
-  std::vector<ob::State*> out;
-  out.reserve(states.size() * 2);
-  for (std::size_t i = 0; i < states.size(); ++i) {
-    if (i > 0) {
-      const double len = si->distance(states[i - 1], states[i]);
-      const int pieces = static_cast<int>(len / max_segment);
-      for (int k = 1; k <= pieces; ++k) {
-        ob::State* s = si->allocState();
-        si->getStateSpace()->interpolate(states[i - 1], states[i],
-                                         static_cast<double>(k) / (pieces + 1), s);
-        out.push_back(s);
-      }
-    }
-    out.push_back(states[i]);
+// The space information as a world for env's tightener: a segment is free when its first end
+// is valid and OMPL's motion validator accepts the motion (the GOG harness installs the exact
+// voxel walk there). Two scratch states: one view serves one run at a time.
+template <int D>
+class SpaceView {
+ public:
+  static constexpr int kDim = D;
+  explicit SpaceView(const ob::SpaceInformationPtr& si)
+      : si_(si), a_(si->allocState()), b_(si->allocState()) {}
+  ~SpaceView() {
+    si_->freeState(a_);
+    si_->freeState(b_);
   }
-  states.swap(out);
-}
+  SpaceView(const SpaceView&) = delete;
+  SpaceView& operator=(const SpaceView&) = delete;
 
-double length_of(const ob::SpaceInformationPtr& si, const std::vector<ob::State*>& states) {
-  double len = 0.0;
-  for (std::size_t i = 1; i < states.size(); ++i) len += si->distance(states[i - 1], states[i]);
-  return len;
+  bool segment_free(const env::Vec<D>& p, const env::Vec<D>& q) const {
+    set(a_, p);
+    set(b_, q);
+    return si_->isValid(a_) && si_->checkMotion(a_, b_);
+  }
+
+  static env::Vec<D> point(const ob::State* s) {
+    env::Vec<D> p;
+    const double* v = s->as<ob::RealVectorStateSpace::StateType>()->values;
+    for (int k = 0; k < D; ++k) p[k] = v[k];
+    return p;
+  }
+  static void set(ob::State* s, const env::Vec<D>& p) {
+    double* v = s->as<ob::RealVectorStateSpace::StateType>()->values;
+    for (int k = 0; k < D; ++k) v[k] = p[k];
+  }
+
+ private:
+  ob::SpaceInformationPtr si_;
+  ob::State* a_;
+  ob::State* b_;
+};
+
+template <int D>
+TighteningStats tighten_as(const ob::SpaceInformationPtr& si, og::PathGeometric& path,
+                           const ob::PlannerTerminationCondition& ptc, double max_segment,
+                           int max_rounds) {
+  const SpaceView<D> view(si);
+  std::vector<env::Vec<D>> points;
+  for (const ob::State* s : path.getStates()) points.push_back(SpaceView<D>::point(s));
+  TighteningStats stats;
+  stats.length_before = env::polyline_length<D>(points);
+  const PtcStopSource ptc_stop(ptc);
+  env::TightenOptions o;
+  o.max_segment = max_segment;
+  o.max_rounds = max_rounds;
+  o.tolerance = 1e-5;
+  o.time_limit_s = 1e9;  // the termination condition is the budget
+  o.stop = Stop(ptc_stop.token());
+  stats.rounds = env::tighten_in_place(view, points, o);
+  stats.length_after = env::polyline_length<D>(points);
+  // Back into OMPL's path, reusing its states where there are enough.
+  auto& states = path.getStates();
+  while (states.size() > points.size()) {
+    si->freeState(states.back());
+    states.pop_back();
+  }
+  while (states.size() < points.size()) states.push_back(si->allocState());
+  for (std::size_t i = 0; i < points.size(); ++i) SpaceView<D>::set(states[i], points[i]);
+  return stats;
 }
 
 }  // namespace
@@ -55,56 +92,20 @@ double length_of(const ob::SpaceInformationPtr& si, const std::vector<ob::State*
 TighteningStats tighten_path(const ob::SpaceInformationPtr& si, og::PathGeometric& path,
                              const ob::PlannerTerminationCondition& ptc, double max_segment,
                              int max_rounds) {
-  auto& states = path.getStates();
+  if (dynamic_cast<const ob::RealVectorStateSpace*>(si->getStateSpace().get()) == nullptr)
+    throw RunError("tighten_path needs a real vector state space");
+  const int dims = static_cast<int>(si->getStateDimension());
   TighteningStats stats;
-  stats.length_before = length_of(si, states);
-  double length = stats.length_before;
-  const auto* real = dynamic_cast<const ob::RealVectorStateSpace*>(si->getStateSpace().get());
-  const unsigned dims = si->getStateDimension();
-  ob::State* mid = si->allocState();
-  ob::State* trial = si->allocState();
-  while (stats.rounds < max_rounds && !ptc()) {
-    ++stats.rounds;
-    subdivide(si, states, max_segment);
-    for (std::size_t i = 1; i + 1 < states.size(); ++i) {
-      si->getStateSpace()->interpolate(states[i - 1], states[i + 1], 0.5, mid);
-      auto accept = [&] {
-        if (si->isValid(trial) && si->checkMotion(states[i - 1], trial) &&
-            si->checkMotion(trial, states[i + 1])) {
-          si->copyState(states[i], trial);
-          return true;
-        }
-        return false;
-      };
-      bool moved = false;
-      for (double step = 1.0; step >= 0.125 && !moved; step *= 0.5) {
-        si->getStateSpace()->interpolate(states[i], mid, step, trial);
-        moved = accept();
-      }
-      // Blocked against a face: slide along it, one coordinate at a time (real vector spaces;
-      // the GOG obstacles are axis-aligned, so this is the move that stays clear of a face).
-      if (!moved && real != nullptr) {
-        for (unsigned k = 0; k < dims; ++k) {
-          for (double step = 1.0; step >= 0.25; step *= 0.5) {
-            si->copyState(trial, states[i]);
-            double* t = trial->as<ob::RealVectorStateSpace::StateType>()->values;
-            const double* m = mid->as<ob::RealVectorStateSpace::StateType>()->values;
-            t[k] += step * (m[k] - t[k]);
-            if (accept()) break;
-          }
-        }
-      }
-    }
-    drop_redundant(si, states);
-    const double now = length_of(si, states);
-    // Converged when a round gains less than a hundred-thousandth.
-    const bool done = length - now <= 1e-5 * length;
-    length = now;
-    if (done) break;
+  bool done = false;
+  // The tightener works on fixed-size points: pick the instance for this dimension.
+  [&]<int... I>(std::integer_sequence<int, I...>) {
+    ((dims == I + 1
+          ? (stats = tighten_as<I + 1>(si, path, ptc, max_segment, max_rounds), done = true)
+          : false) ||
+     ...);
   }
-  si->freeState(mid);
-  si->freeState(trial);
-  stats.length_after = length;
+  (std::make_integer_sequence<int, kMaxDims>{});
+  if (!done) throw RunError("tighten_path: dimension " + std::to_string(dims) + " is not in 1..16");
   return stats;
 }
 

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <vector>
 
+#include "hpcplan/core/stop.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/env/point.hpp"
 
@@ -36,7 +37,8 @@ struct TightenOptions {
   double max_segment = 0.0;  // subdivide longer segments first; 0 = a 40th of the length
   double tolerance = 1e-7;   // relative gain per round below which to stop
   int max_rounds = 400;
-  double time_limit_s = 0.05;
+  double time_limit_s = 0.05;  // the tightener's own budget
+  Stop stop;                   // and the caller's (OMPL's termination condition, a cancel)
 };
 
 namespace detail {
@@ -137,16 +139,20 @@ void relax(const W& world, std::vector<Vec<W::kDim>>& path) {
 // The shortest path among axis-aligned boxes bends only on box edges, which are parallel to
 // the axes; a bend caught on such an edge cannot move towards its chord, but it can slide
 // along the edge. So each vertex tries the chord, then each axis's own optimum.
+// Tightens `path` in place; returns the rounds it ran. `world` needs only segment_free.
 template <class W>
-std::vector<Vec<W::kDim>> tighten_path(const W& world, std::vector<Vec<W::kDim>> path,
-                                       const TightenOptions& o = {}) {
+int tighten_in_place(const W& world, std::vector<Vec<W::kDim>>& path,
+                     const TightenOptions& o = {}) {
   constexpr int D = W::kDim;
-  if (path.size() <= 2) return path;
+  if (path.size() <= 2) return 0;
   Stopwatch clock;
+  Stop stop = o.stop;
   const double total = polyline_length<D>(path);
   const double max_segment = o.max_segment > 0 ? o.max_segment : total / 40.0;
   double length = total;
-  for (int round = 0; round < o.max_rounds && clock.seconds() < o.time_limit_s; ++round) {
+  int round = 0;
+  while (round < o.max_rounds && clock.seconds() < o.time_limit_s && !stop.poll()) {
+    ++round;
     // Big steps: drop the vertices whose neighbours see each other. Small steps: split long
     // segments again, so a straight run has vertices that can bend towards an obstacle edge it
     // should wrap, and relax every vertex.
@@ -159,6 +165,13 @@ std::vector<Vec<W::kDim>> tighten_path(const W& world, std::vector<Vec<W::kDim>>
     if (converged) break;
   }
   detail::drop_visible(world, path);  // no vertex left that a straight segment can replace
+  return round;
+}
+
+template <class W>
+std::vector<Vec<W::kDim>> tighten_path(const W& world, std::vector<Vec<W::kDim>> path,
+                                       const TightenOptions& o = {}) {
+  tighten_in_place(world, path, o);
   return path;
 }
 
