@@ -43,38 +43,21 @@ BoxWorld::BoxWorld(Aabb<3> boundary, std::vector<Block> blocks)
   // About two buckets per block along each axis of the boundary's shape, at most 64 each.
   const double target = std::clamp(static_cast<double>(blocks_.size()) * 8.0, 1.0, 262144.0);
   const double side = std::cbrt(boundary_.volume() / target);
-  std::size_t total = 1;
+  GridShape<3>::Coords counts;
   for (int k = 0; k < 3; ++k) {
     const double len = boundary_.hi[k] - boundary_.lo[k];
-    buckets_[k] = std::clamp(static_cast<int>(std::ceil(len / side)), 1, 64);
-    bucket_size_[k] = len / buckets_[k];
-    total *= static_cast<std::size_t>(buckets_[k]);
+    counts[k] = std::clamp(static_cast<int>(std::ceil(len / side)), 1, 64);
+    buckets_.cell[k] = len / static_cast<double>(counts[k]);
   }
-  std::vector<std::vector<std::uint32_t>> lists(total);
-  for (std::uint32_t i = 0; i < boxes_.size(); ++i) {
-    std::array<int, 3> lo, hi;
-    bool outside = false;
-    for (int k = 0; k < 3; ++k) {
-      const double a = (boxes_[i].lo[k] - boundary_.lo[k]) / bucket_size_[k];
-      const double b = (boxes_[i].hi[k] - boundary_.lo[k]) / bucket_size_[k];
-      if (b < 0 || a > buckets_[k]) outside = true;
-      // Closed overlap: a block ending exactly on a bucket face belongs to both buckets.
-      lo[k] = std::clamp(static_cast<int>(std::floor(a)) - (a == std::floor(a) ? 1 : 0), 0,
-                         buckets_[k] - 1);
-      hi[k] = std::clamp(static_cast<int>(std::floor(b)), 0, buckets_[k] - 1);
-    }
-    if (outside) continue;  // cannot touch anything inside the boundary
-    for (int x = lo[0]; x <= hi[0]; ++x)
-      for (int y = lo[1]; y <= hi[1]; ++y)
-        for (int z = lo[2]; z <= hi[2]; ++z)
-          lists[(static_cast<std::size_t>(z) * buckets_[1] + y) * buckets_[0] + x].push_back(i);
-  }
-  bucket_start_.reserve(total + 1);
-  bucket_start_.push_back(0);
-  for (const auto& l : lists) {
-    bucket_items_.insert(bucket_items_.end(), l.begin(), l.end());
-    bucket_start_.push_back(static_cast<std::uint32_t>(bucket_items_.size()));
-  }
+  buckets_.origin = boundary_.lo;
+  buckets_.shape = GridShape<3>(counts);
+  // Closed overlap: a block ending exactly on a bucket face belongs to both buckets; a block
+  // wholly outside the boundary cannot touch anything inside it and is in no bucket.
+  bucket_items_.build(buckets_.shape.size(), boxes_.size(), [&](std::size_t i, auto&& add) {
+    GridShape<3>::Coords first, last;
+    if (buckets_.cells_touching(boxes_[i].lo, boxes_[i].hi, first, last))
+      GridShape<3>::for_each_in(first, last, [&](const auto& c) { add(buckets_.shape.index(c)); });
+  });
   // Free volume (RRT*'s neighbourhood radius scales with it): a fixed stratified sample, so
   // it costs the same for any block count and is the same in every run (within ~1%).
   SplitMix64 rng(0x5eed);
@@ -95,29 +78,22 @@ BoxWorld::BoxWorld(Aabb<3> boundary, std::vector<Block> blocks)
 // can repeat) until visit returns true; returns whether one did.
 template <class Visit>
 bool BoxWorld::any_candidate(const Aabb<3>& region, Visit&& visit) const {
-  std::array<int, 3> lo, hi;
+  GridShape<3>::Coords first, last;
+  buckets_.cells_touching_clamped(region.lo, region.hi, first, last);
   std::size_t count = 1;
-  for (int k = 0; k < 3; ++k) {
-    const double a = (region.lo[k] - boundary_.lo[k]) / bucket_size_[k];
-    const double b = (region.hi[k] - boundary_.lo[k]) / bucket_size_[k];
-    lo[k] = std::clamp(static_cast<int>(std::floor(a)) - (a == std::floor(a) ? 1 : 0), 0,
-                       buckets_[k] - 1);
-    hi[k] = std::clamp(static_cast<int>(std::floor(b)), 0, buckets_[k] - 1);
-    count *= static_cast<std::size_t>(hi[k] - lo[k] + 1);
-  }
+  for (int k = 0; k < 3; ++k) count *= static_cast<std::size_t>(last[k] - first[k] + 1);
   if (count > boxes_.size()) {  // a long query: scanning every block is cheaper
     for (std::uint32_t i = 0; i < boxes_.size(); ++i)
       if (visit(i)) return true;
     return false;
   }
-  for (int z = lo[2]; z <= hi[2]; ++z)
-    for (int y = lo[1]; y <= hi[1]; ++y)
-      for (int x = lo[0]; x <= hi[0]; ++x) {
-        const std::size_t b = (static_cast<std::size_t>(z) * buckets_[1] + y) * buckets_[0] + x;
-        for (std::uint32_t j = bucket_start_[b]; j < bucket_start_[b + 1]; ++j)
-          if (visit(bucket_items_[j])) return true;
-      }
-  return false;
+  bool hit = false;
+  GridShape<3>::for_each_in(first, last, [&](const auto& c) {
+    for (std::uint32_t j : bucket_items_.items_in(buckets_.shape.index(c)))
+      if (visit(j)) return !(hit = true);
+    return true;
+  });
+  return hit;
 }
 
 bool BoxWorld::point_free(const Point& p) const {

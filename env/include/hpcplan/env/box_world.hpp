@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hpcplan/core/check_counter.hpp"
+#include "hpcplan/core/uniform_grid.hpp"
 #include "hpcplan/env/point.hpp"
 
 namespace hpcplan::env {
@@ -57,10 +58,8 @@ class BoxWorld {
   std::vector<Block> blocks_;
   std::vector<Aabb<3>> boxes_;  // blocks_[i].box padded by the contact margin, packed
   // Bucket grid: bucket b lists the blocks whose closed box overlaps it.
-  std::array<int, 3> buckets_{1, 1, 1};
-  Vec<3> bucket_size_{};
-  std::vector<std::uint32_t> bucket_start_;  // CSR offsets, size = bucket count + 1
-  std::vector<std::uint32_t> bucket_items_;
+  UniformGrid<3> buckets_;
+  CsrBuckets bucket_items_;
   double free_volume_ = 0.0;
   CheckCounter checks_;  // shared by concurrent readers
 };

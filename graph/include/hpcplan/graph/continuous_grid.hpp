@@ -21,6 +21,7 @@
 #include "hpcplan/core/check_counter.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/splitmix64.hpp"
+#include "hpcplan/core/uniform_grid.hpp"
 #include "hpcplan/env/point.hpp"
 
 namespace hpcplan {
@@ -60,31 +61,27 @@ class ContinuousGrid {
     const auto box = world.bounds();
     lo_ = box.lo;
     double vertices = 1.0, cells = 1.0;
+    Coords n, cell_counts;
     for (int k = 0; k < D; ++k) {
       const double extent = box.hi[k] - box.lo[k];
       if (res_ > extent)
         throw InputError("the resolution is coarser than the world along axis " +
                          std::string(1, "xyz"[k]));
-      n_[k] = static_cast<std::int64_t>(std::floor(extent / res_ * (1 + 1e-12))) + 1;
-      vertices *= static_cast<double>(n_[k]);
-      cells *= static_cast<double>(n_[k] - 1);
+      n[k] = static_cast<std::int64_t>(std::floor(extent / res_ * (1 + 1e-12))) + 1;
+      cell_counts[k] = n[k] - 1;
+      vertices *= static_cast<double>(n[k]);
+      cells *= static_cast<double>(n[k] - 1);
     }
     if (vertices > 1e18) throw InputError("the resolution is too fine for this world");
-    stride_[0] = 1;
-    for (int k = 1; k < D; ++k) stride_[k] = stride_[k - 1] * static_cast<std::uint64_t>(n_[k - 1]);
+    vertices_ = GridShape<D>(n);
+    cells_ = GridShape<D>(cell_counts);
     if (cells <= static_cast<double>(config.max_cached_cells))
       cell_state_.assign(static_cast<std::size_t>(cells), kUnknown);
     // Neighbour offsets and their lengths.
-    for (int code = 0; code < kPow3; ++code) {
-      std::array<int, D> d;
-      int c = code, nonzero = 0;
-      for (int k = 0; k < D; ++k) {
-        d[k] = c % 3 - 1;
-        c /= 3;
-        nonzero += d[k] != 0;
-      }
-      if (nonzero == 0) continue;
-      offsets_.push_back(d);
+    offsets_ = GridShape<D>::neighbour_offsets();
+    for (const auto& d : offsets_) {
+      int nonzero = 0;
+      for (int k = 0; k < D; ++k) nonzero += d[k] != 0;
       lengths_.push_back(res_ * std::sqrt(static_cast<double>(nonzero)));
     }
     start_near_ = neighbourhood(start_);
@@ -99,9 +96,7 @@ class ContinuousGrid {
   double resolution() const { return res_; }
   const Point& start_point() const { return start_; }
   const Point& goal_point() const { return goal_; }
-  std::uint64_t vertex_count() const {
-    return stride_[D - 1] * static_cast<std::uint64_t>(n_[D - 1]);
-  }
+  std::uint64_t vertex_count() const { return vertices_.size(); }
   // This thread's checks: the world may be shared with other planning threads.
   std::uint64_t collision_checks() const { return CheckCounter::this_thread(); }
   std::size_t samples() const { return samples_.size(); }
@@ -151,7 +146,7 @@ class ContinuousGrid {
         bool inside = true;
         for (int k = 0; k < D; ++k) {
           t[k] = c[k] + offsets_[i][k];
-          inside &= t[k] >= 0 && t[k] < n_[k];
+          inside &= t[k] >= 0 && t[k] < vertices_.count(k);
         }
         if (inside && lattice_edge_free(c, t, p)) emit(index(t), lengths_[i], s);
       }
@@ -173,7 +168,6 @@ class ContinuousGrid {
   }
 
  private:
-  static constexpr int kPow3 = D == 2 ? 9 : D == 3 ? 27 : 81;
   static constexpr std::uint8_t kUnknown = 0, kClear = 1, kBlocked = 2;
   static constexpr double kRoot[4] = {1.0, 1.4142135623730951, 1.7320508075688772, 2.0};
   using Coords = std::array<std::int64_t, D>;
@@ -181,23 +175,14 @@ class ContinuousGrid {
     Coords lo, hi;
   };
 
-  Coords coords(State s) const {
-    Coords c;
-    for (int k = 0; k < D; ++k)
-      c[k] = static_cast<std::int64_t>((s / stride_[k]) % static_cast<std::uint64_t>(n_[k]));
-    return c;
-  }
+  Coords coords(State s) const { return vertices_.coords(s); }
   Point vertex_point(const Coords& c) const {
     Point p;
     for (int k = 0; k < D; ++k) p[k] = lo_[k] + static_cast<double>(c[k]) * res_;
     return p;
   }
 
-  State index(const Coords& c) const {
-    State s = 0;
-    for (int k = 0; k < D; ++k) s += static_cast<std::uint64_t>(c[k]) * stride_[k];
-    return s;
-  }
+  State index(const Coords& c) const { return vertices_.index(c); }
 
   // The vertices of the 4^D block around a point (its cell's corners and one ring more).
   Range neighbourhood(const Point& p) const {
@@ -206,8 +191,8 @@ class ContinuousGrid {
       const double x = (p[k] - lo_[k]) / res_;
       const auto f =
           std::isfinite(x) ? static_cast<std::int64_t>(std::floor(std::clamp(x, -2.0, 1e18))) : 0;
-      r.lo[k] = std::clamp<std::int64_t>(f - 1, 0, n_[k] - 1);
-      r.hi[k] = std::clamp<std::int64_t>(f + 2, 0, n_[k] - 1);
+      r.lo[k] = std::clamp<std::int64_t>(f - 1, 0, vertices_.count(k) - 1);
+      r.hi[k] = std::clamp<std::int64_t>(f + 2, 0, vertices_.count(k) - 1);
     }
     return r;
   }
@@ -218,36 +203,24 @@ class ContinuousGrid {
   }
   template <class Fn>
   static void for_each_vertex(const Range& r, Fn&& fn) {
-    Coords c = r.lo;
-    for (;;) {
-      fn(c);
-      int k = 0;
-      while (k < D && c[k] == r.hi[k]) c[k] = r.lo[k], ++k;
-      if (k == D) return;
-      ++c[k];
-    }
+    GridShape<D>::for_each_in(r.lo, r.hi, fn);
   }
 
   // The edge c->t lies in the closed cell whose lower corner is min(c, t) on each axis it
   // moves along (and c, or c - 1 at the upper face, on the others).
   bool lattice_edge_free(const Coords& c, const Coords& t, const Point& p) const {
     if (!cell_state_.empty()) {
-      std::size_t cell = 0, stride = 1;
+      Coords lower;
       for (int k = 0; k < D; ++k) {
-        std::int64_t lower = std::min(c[k], t[k]);
-        if (lower == n_[k] - 1) --lower;
-        cell += static_cast<std::size_t>(lower) * stride;
-        stride *= static_cast<std::size_t>(n_[k] - 1);
+        lower[k] = std::min(c[k], t[k]);
+        if (lower[k] == cells_.count(k)) --lower[k];
       }
-      std::uint8_t& state = cell_state_[cell];
+      std::uint8_t& state = cell_state_[cells_.index(lower)];
       if (state == kUnknown) {
         env::Aabb<D> box;
-        std::size_t rest = cell;
         for (int k = 0; k < D; ++k) {
-          const auto ck = static_cast<std::int64_t>(rest % static_cast<std::size_t>(n_[k] - 1));
-          rest /= static_cast<std::size_t>(n_[k] - 1);
-          box.lo[k] = lo_[k] + static_cast<double>(ck) * res_;
-          box.hi[k] = lo_[k] + static_cast<double>(ck + 1) * res_;
+          box.lo[k] = lo_[k] + static_cast<double>(lower[k]) * res_;
+          box.hi[k] = lo_[k] + static_cast<double>(lower[k] + 1) * res_;
         }
         state = world_.box_free(box) ? kClear : kBlocked;
       }
@@ -277,8 +250,8 @@ class ContinuousGrid {
   Point start_, goal_;
   double res_;
   Point lo_;
-  std::array<std::int64_t, D> n_{};
-  std::array<std::uint64_t, D> stride_{};
+  GridShape<D> vertices_;  // the lattice's vertices
+  GridShape<D> cells_;     // the cells between them (one fewer per axis)
   std::vector<std::array<int, D>> offsets_;
   std::vector<double> lengths_;
   Range start_near_, goal_near_;

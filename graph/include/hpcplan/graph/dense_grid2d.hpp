@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "hpcplan/core/splitmix64.hpp"
+#include "hpcplan/core/uniform_grid.hpp"
 #include "hpcplan/graph/lattice_cost.hpp"
 
 namespace hpcplan {
@@ -20,19 +21,19 @@ class DenseGrid2D {
   };
   static constexpr Move kNoMove = 0xFF;
 
-  DenseGrid2D(int width, int height) : width_(width), height_(height), blocked_(width * height) {
+  DenseGrid2D(int width, int height) {
     if (width < 1 || height < 1) throw std::invalid_argument("grid must be at least 1x1");
+    shape_ = GridShape<2>({width, height});
+    blocked_.assign(shape_.size(), false);
   }
 
-  int width() const { return width_; }
-  int height() const { return height_; }
-  State at(int x, int y) const { return static_cast<State>(y * width_ + x); }
-  int x_of(State s) const { return static_cast<int>(s) % width_; }
-  int y_of(State s) const { return static_cast<int>(s) / width_; }
+  int width() const { return static_cast<int>(shape_.count(0)); }
+  int height() const { return static_cast<int>(shape_.count(1)); }
+  State at(int x, int y) const { return static_cast<State>(shape_.index({x, y})); }
+  int x_of(State s) const { return static_cast<int>(shape_.coords(s)[0]); }
+  int y_of(State s) const { return static_cast<int>(shape_.coords(s)[1]); }
   void set_blocked(int x, int y, bool b) { blocked_[at(x, y)] = b; }
-  bool is_free(int x, int y) const {
-    return x >= 0 && y >= 0 && x < width_ && y < height_ && !blocked_[at(x, y)];
-  }
+  bool is_free(int x, int y) const { return shape_.contains({x, y}) && !blocked_[at(x, y)]; }
   std::uint64_t collision_checks() const { return checks_; }
 
   template <class Emit>
@@ -73,8 +74,7 @@ class DenseGrid2D {
   static constexpr int kAxisA[8] = {0, 0, 0, 0, 0, 0, 1, 1};
   static constexpr int kAxisB[8] = {0, 0, 0, 0, 2, 3, 2, 3};
 
-  int width_;
-  int height_;
+  GridShape<2> shape_;
   std::vector<std::uint8_t> blocked_;
   mutable std::uint64_t checks_ = 0;
 };
