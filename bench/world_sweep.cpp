@@ -17,6 +17,7 @@
 #include "hpcplan/env/box_map_io.hpp"
 #include "hpcplan/env/sphere_world.hpp"
 #include "hpcplan/io/path_csv.hpp"
+#include "hpcplan/io/world_plan_json.hpp"
 #include "hpcplan/plan/planner_registry.hpp"
 #include "hpcplan/plan/world_planner.hpp"
 
@@ -56,14 +57,7 @@ void sweep(const std::string& name, const Map& map, const std::vector<Config>& c
       plan::WorldPlanOptions o = c.options;
       o.seed = static_cast<std::uint64_t>(run + 1);
       const plan::WorldPlan<D> p = plan::plan_in_world(map.world, *map.start, *map.goal, o);
-      char row[512];
-      std::snprintf(row, sizeof row, "%s,%s,%d,%s,%.9f,%.9f,%.4f,%.4f,%.4f,%llu,%llu,%llu\n",
-                    name.c_str(), c.label.c_str(), run + 1,
-                    std::string(to_string(p.status)).c_str(), p.length, p.raw_length, p.time_ms,
-                    p.plan_ms, p.first_time_ms, static_cast<unsigned long long>(p.expanded),
-                    static_cast<unsigned long long>(p.tree_size),
-                    static_cast<unsigned long long>(p.collision_checks));
-      csv += row;
+      csv += to_csv_row(p, name, c.label, run + 1);
       if (!paths_dir.empty() && !path_written && p.status == Status::solved) {
         write_file_atomically(paths_dir + "/" + name + "__" + c.label + ".csv",
                               path_csv<D>(p.path));
@@ -104,9 +98,7 @@ int main(int argc, char** argv) {
       plan::PlannerRegistry::get().require(kind, configs.back().options.algo);
     }
     if (!paths_dir.empty()) std::filesystem::create_directories(paths_dir);
-    std::string csv =
-        "map,config,run,status,length,raw_length,time_ms,plan_ms,first_ms,expanded,tree_size,"
-        "checks\n";
+    std::string csv = world_plan_csv_header();
     Progress progress("sweep", maps.size() * configs.size() * static_cast<std::size_t>(runs));
     for (const std::string& file : maps) {
       const std::string name = std::filesystem::path(file).stem().string();

@@ -6,14 +6,13 @@
 #include <sstream>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "commands.hpp"
 #include "hpcplan/core/atomic_file.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/env/box_map_io.hpp"
 #include "hpcplan/env/sphere_world.hpp"
 #include "hpcplan/io/path_csv.hpp"
+#include "hpcplan/io/world_plan_json.hpp"
 #include "hpcplan/plan/world_planner.hpp"
 #include "number_options.hpp"
 
@@ -50,49 +49,6 @@ env::Vec<D> parse_point(const std::string& text, const char* option) {
   return p;
 }
 
-template <int D>
-nlohmann::json to_json(const plan::WorldPlan<D>& p) {
-  nlohmann::json path = nlohmann::json::array();
-  for (const auto& q : p.path) path.push_back(q);
-  nlohmann::json j = {{"status", to_string(p.status)},
-                      {"algo", p.algo},
-                      {"length", p.length},
-                      {"raw_length", p.raw_length},
-                      {"time_ms", p.time_ms},
-                      {"plan_ms", p.plan_ms},
-                      {"expanded", p.expanded},
-                      {"tree_size", p.tree_size},
-                      {"collision_checks", p.collision_checks},
-                      {"waypoints", p.path.size()},
-                      {"path", path}};
-  if (p.first_time_ms >= 0) j["first_solution_ms"] = p.first_time_ms;
-  return j;
-}
-
-template <int D>
-std::string summary(const plan::WorldPlan<D>& p, const std::string& map) {
-  char buf[512];
-  std::string s;
-  std::snprintf(buf, sizeof buf, "%-18s %s\n", "map", map.c_str());
-  s += buf;
-  const std::pair<const char*, std::string> rows[] = {
-      {"algorithm", p.algo},
-      {"status", std::string(to_string(p.status))},
-      {"length", std::to_string(p.length)},
-      {"as planned", std::to_string(p.raw_length)},
-      {"waypoints", std::to_string(p.path.size())},
-      {"time (ms)", std::to_string(p.time_ms)},
-      {"expanded", std::to_string(p.expanded)},
-      {"tree / stored", std::to_string(p.tree_size)},
-      {"collision checks", std::to_string(p.collision_checks)},
-  };
-  for (const auto& [k, v] : rows) {
-    std::snprintf(buf, sizeof buf, "%-18s %s\n", k, v.c_str());
-    s += buf;
-  }
-  return s;
-}
-
 // The query point: the option when given, else the map's own line.
 template <int D>
 env::Vec<D> query_point(const std::string& option_text, const std::optional<env::Vec<D>>& from_map,
@@ -113,7 +69,7 @@ int run(const WorldArgs& a, const Map& map) {
   if (!a.output.empty()) write_file_atomically(a.output, json);
   if (!a.path_out.empty() && p.status == Status::solved)
     write_file_atomically(a.path_out, path_csv<D>(p.path));
-  std::fputs(a.json ? json.c_str() : summary(p, a.map).c_str(), stdout);
+  std::fputs(a.json ? json.c_str() : to_summary(p, a.map).c_str(), stdout);
   // No path is an answer (exit 0, status in the output); a hint on stderr says what to try.
   if (p.status != Status::solved) {
     std::fflush(stdout);
