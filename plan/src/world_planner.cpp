@@ -88,8 +88,7 @@ void run_grid(const W& world, const env::Vec<W::kDim>& start, const env::Vec<W::
   }
   plan.status = result.status;
   for (auto s : result.path) plan.path.push_back(grid.point(s));
-  plan.expanded = result.counters.expanded;
-  plan.tree_size = result.counters.peak_states;
+  plan.counters = result.counters;
 }
 
 template <class W>
@@ -109,12 +108,12 @@ void run_visibility(const W& world, const env::Vec<W::kDim>& start, const env::V
       graph, Graph::kStart, Graph::kGoal, EuclideanToGoal<Graph>{&graph}, so);
   plan.status = result.status;
   for (auto s : result.path) plan.path.push_back(graph.point(s));
-  plan.expanded = result.counters.expanded;
-  plan.tree_size = graph.vertex_count();
+  plan.counters = result.counters;
+  plan.counters.peak_states = graph.vertex_count();
 }
 
-template <int D>
-void take_tree_result(tree::TreeResult<D> r, WorldPlan<D>& plan);
+template <class R, class Plan>
+void take_tree_result(R r, Plan& plan);
 
 template <class W>
 void run_tree(const W& world, const env::Vec<W::kDim>& start, const env::Vec<W::kDim>& goal,
@@ -141,12 +140,11 @@ void run_ompl(const W& world, const env::Vec<W::kDim>& start, const env::Vec<W::
       plan);
 }
 
-template <int D>
-void take_tree_result(tree::TreeResult<D> r, WorldPlan<D>& plan) {
+template <class R, class Plan>
+void take_tree_result(R r, Plan& plan) {
   plan.status = r.status;
   plan.path = std::move(r.path);
-  plan.tree_size = r.tree_size;
-  plan.first_time_ms = r.first_time_ms;
+  plan.counters = r.counters;
 }
 
 // How each planner runs; its registry entry sits beside it.
@@ -255,12 +253,13 @@ WorldPlan<W::kDim> plan_in_world(const W& world, const env::Vec<W::kDim>& start,
   run(entry->runner, world, start, goal, o, plan);
   plan.plan_ms = clock.milliseconds();
   if (plan.status == Status::solved) {
-    plan.raw_length = env::polyline_length<D>(plan.path);
+    plan.raw_cost = env::polyline_length<D>(plan.path);
     if (o.shortcut) plan.path = env::tighten_path(world, env::shortcut_path(world, plan.path));
-    plan.length = env::polyline_length<D>(plan.path);
+    plan.cost = env::polyline_length<D>(plan.path);
+    plan.hops = plan.path.size() - 1;
   }
-  plan.time_ms = clock.milliseconds();
-  plan.collision_checks = CheckCounter::this_thread() - checks0;
+  plan.counters.time_ms = clock.milliseconds();
+  plan.counters.collision_checks = CheckCounter::this_thread() - checks0;
   if (plan.status == Status::solved) {
     if (const std::string why = path_problem(world, plan.path, start, goal); !why.empty())
       throw RunError("internal error: " + o.algo + " returned a bad path: " + why);

@@ -108,10 +108,10 @@ tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const env::Vec<W::kDim
       ob::PlannerTerminationCondition([cancel] { return cancel.stop_requested(); })));
 
   tree::TreeResult<D> r;
-  r.time_ms = clock.milliseconds();
+  r.counters.time_ms = clock.milliseconds();
   ob::PlannerData data(si);
   planner->getPlannerData(data);
-  r.tree_size = data.numVertices();
+  r.counters.peak_states = data.numVertices();
   if (status == ob::PlannerStatus::EXACT_SOLUTION && pdef->getSolutionPath()) {
     const auto& path = *pdef->getSolutionPath()->as<og::PathGeometric>();
     for (std::size_t i = 0; i < path.getStateCount(); ++i)
@@ -126,14 +126,15 @@ tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const env::Vec<W::kDim
   }
   if (!r.path.empty()) {
     r.status = Status::solved;
-    r.length = env::polyline_length<D>(r.path);
+    r.cost = env::polyline_length<D>(r.path);
+    r.hops = r.path.size() - 1;
   } else {
     r.status =
         status == ob::PlannerStatus::TIMEOUT || status == ob::PlannerStatus::APPROXIMATE_SOLUTION
             ? Status::timeout
             : Status::no_path;
   }
-  r.collision_checks = CheckCounter::this_thread() - checks0;
+  r.counters.collision_checks = CheckCounter::this_thread() - checks0;
   return r;
 }
 

@@ -134,12 +134,15 @@ TEST(TreePlanners, SolveEveryShippedMapWithValidPaths) {
       const auto c = tree::rrt_star(m.world, *m.start, *m.goal, o);
       ASSERT_EQ(c.status, search::Status::solved) << name << " seed " << seed;
       expect_valid(m.world, c.path, *m.start, *m.goal, std::string(name) + " rrtstar");
-      EXPECT_NEAR(c.length, env::polyline_length<3>(c.path), 1e-9);
-      EXPECT_LE(c.length, c.first_length + 1e-9);  // refinement never lengthens
+      EXPECT_NEAR(c.cost, env::polyline_length<3>(c.path), 1e-9);
+      EXPECT_EQ(c.hops + 1, c.path.size());  // the one Result's fields agree
+      EXPECT_GT(c.counters.peak_states, 1u);
+      EXPECT_EQ(c.counters.samples, 20000u);
+      EXPECT_LE(c.cost, c.counters.first_cost + 1e-9);  // refinement never lengthens
       // Shortcutting keeps the ends and validity and never lengthens.
       const auto s = env::tighten_path(m.world, env::shortcut_path(m.world, a.path));
       expect_valid(m.world, s, *m.start, *m.goal, std::string(name) + " shortcut");
-      EXPECT_LE(env::polyline_length<3>(s), a.length + 1e-9);
+      EXPECT_LE(env::polyline_length<3>(s), a.cost + 1e-9);
     }
   }
 }
@@ -154,7 +157,7 @@ TEST(TreePlanners, RrtStarApproachesTheAnyAngleOptimumOnOneBox) {
   const Grid3 g(m.world, *m.start, *m.goal, {0.1});
   const auto theta = grid_search(g, EuclideanToGoal<Grid3>{&g}, {}, true);
   ASSERT_EQ(r.status, search::Status::solved);
-  EXPECT_LT(r.length, theta.result.cost * 1.05);
+  EXPECT_LT(r.cost, theta.result.cost * 1.05);
 }
 
 TEST(TreePlanners, UnreachableGoalEndsWithoutAPath) {

@@ -133,7 +133,7 @@ TEST(Stop, TwoPlannersShareOneWorldWhileAThirdCancels) {
   EXPECT_EQ(together.first.counters.collision_checks, alone.first.counters.collision_checks);
   test_support::expect_valid(w, together.second, *map.start, *map.goal, "concurrent astar");
   // RRT* ran until cancelled; whatever it holds then is a valid path.
-  EXPECT_GT(rrt.samples, 0u);
+  EXPECT_GT(rrt.counters.samples, 0u);
   if (rrt.status == Status::solved)
     test_support::expect_valid(w, rrt.path, *map.start, *map.goal, "cancelled rrtstar");
   else

@@ -23,7 +23,7 @@ int main() {
   const GridReport g = solve_grid(problem, {});
 
   std::printf("box map: %s %.3f; lattice: %s %.3f; launched by MPI: %d\n",
-              std::string(to_string(p.status)).c_str(), p.length,
+              std::string(to_string(p.status)).c_str(), p.cost,
               std::string(to_string(g.status)).c_str(), g.cost, mpi::launched_by_mpi() ? 1 : 0);
   return p.status == Status::solved && g.status == Status::solved ? 0 : 1;
 }

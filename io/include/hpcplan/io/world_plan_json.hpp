@@ -17,16 +17,17 @@ nlohmann::json to_json(const plan::WorldPlan<D>& p) {
   for (const auto& q : p.path) path.push_back(q);
   nlohmann::json j = {{"status", to_string(p.status)},
                       {"algo", p.algo},
-                      {"length", p.length},
-                      {"raw_length", p.raw_length},
-                      {"time_ms", p.time_ms},
+                      {"length", p.cost},
+                      {"raw_length", p.raw_cost},
+                      {"time_ms", p.counters.time_ms},
                       {"plan_ms", p.plan_ms},
-                      {"expanded", p.expanded},
-                      {"tree_size", p.tree_size},
-                      {"collision_checks", p.collision_checks},
+                      {"expanded", p.counters.expanded},
+                      {"tree_size", p.counters.peak_states},
+                      {"collision_checks", p.counters.collision_checks},
                       {"waypoints", p.path.size()},
                       {"path", path}};
-  if (p.first_time_ms >= 0) j["first_solution_ms"] = p.first_time_ms;
+  if (p.counters.first_solution_ms >= 0) j["first_solution_ms"] = p.counters.first_solution_ms;
+  if (p.counters.samples > 0) j["samples"] = p.counters.samples;
   return j;
 }
 
@@ -40,13 +41,13 @@ std::string to_summary(const plan::WorldPlan<D>& p, const std::string& map) {
   const std::pair<const char*, std::string> rows[] = {
       {"algorithm", p.algo},
       {"status", std::string(to_string(p.status))},
-      {"length", std::to_string(p.length)},
-      {"as planned", std::to_string(p.raw_length)},
+      {"length", std::to_string(p.cost)},
+      {"as planned", std::to_string(p.raw_cost)},
       {"waypoints", std::to_string(p.path.size())},
-      {"time (ms)", std::to_string(p.time_ms)},
-      {"expanded", std::to_string(p.expanded)},
-      {"tree / stored", std::to_string(p.tree_size)},
-      {"collision checks", std::to_string(p.collision_checks)},
+      {"time (ms)", std::to_string(p.counters.time_ms)},
+      {"expanded", std::to_string(p.counters.expanded)},
+      {"tree / stored", std::to_string(p.counters.peak_states)},
+      {"collision checks", std::to_string(p.counters.collision_checks)},
   };
   for (const auto& [k, v] : rows) {
     std::snprintf(buf, sizeof buf, "%-18s %s\n", k, v.c_str());
@@ -66,11 +67,11 @@ std::string to_csv_row(const plan::WorldPlan<D>& p, const std::string& map,
                        const std::string& config, int run) {
   char row[512];
   std::snprintf(row, sizeof row, "%s,%s,%d,%s,%.9f,%.9f,%.4f,%.4f,%.4f,%llu,%llu,%llu\n",
-                map.c_str(), config.c_str(), run, std::string(to_string(p.status)).c_str(),
-                p.length, p.raw_length, p.time_ms, p.plan_ms, p.first_time_ms,
-                static_cast<unsigned long long>(p.expanded),
-                static_cast<unsigned long long>(p.tree_size),
-                static_cast<unsigned long long>(p.collision_checks));
+                map.c_str(), config.c_str(), run, std::string(to_string(p.status)).c_str(), p.cost,
+                p.raw_cost, p.counters.time_ms, p.plan_ms, p.counters.first_solution_ms,
+                static_cast<unsigned long long>(p.counters.expanded),
+                static_cast<unsigned long long>(p.counters.peak_states),
+                static_cast<unsigned long long>(p.counters.collision_checks));
   return row;
 }
 

@@ -11,7 +11,9 @@
 
 namespace hpcplan {
 
-struct GridReport {
+// The one Result (path of lattice states, cost, hops, counters) plus the problem as solved, the
+// options and the distributed run's figures.
+struct GridReport : Result<std::vector<int>> {
   // Problem as solved.
   int dims = 0;
   int extent = 0;
@@ -45,15 +47,10 @@ struct GridReport {
   std::uint64_t serial_hops = 0;
   std::uint64_t serial_expanded = 0;
   double serial_time_ms = 0.0;
-  // Result.
-  search::Status status = search::Status::no_path;
-  double cost = 0.0;
-  std::uint64_t hops = 0;
+  // Beyond the Result.
   double straight_line = 0.0;
   double quality = 0.0;  // cost / straight_line (seed 002 eq. 2)
-  search::Counters counters;
   double setup_ms = 0.0;
-  std::vector<std::vector<int>> path;
 };
 
 GridReport solve_grid(const GridProblem& problem, const GridSearchOptions& options);

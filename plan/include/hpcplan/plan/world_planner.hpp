@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "hpcplan/core/result.hpp"
 #include "hpcplan/core/status.hpp"
 
 #include "hpcplan/env/point.hpp"
@@ -32,19 +33,14 @@ struct WorldPlanOptions {
   std::stop_token cancel;          // another thread may end the plan (status cancelled)
 };
 
+// The one Result (cost = length of the returned path, after shortcutting when asked;
+// counters.time_ms = planning plus shortcutting; counters.peak_states = stored states of the
+// searches or vertices of the trees), plus what a world plan adds.
 template <int D>
-struct WorldPlan {
-  Status status = Status::no_path;
+struct WorldPlan : Result<env::Vec<D>> {
   std::string algo;
-  std::vector<env::Vec<D>> path;
-  double length = 0.0;          // of `path` (after shortcutting when asked)
-  double raw_length = 0.0;      // as the planner returned it
-  double time_ms = 0.0;         // planning plus shortcutting
-  double plan_ms = 0.0;         // planning alone
-  double first_time_ms = -1.0;  // anytime planners: when the first path appeared
-  std::uint64_t expanded = 0;   // grid searches: states expanded
-  std::uint64_t tree_size = 0;  // tree planners: vertices; grid searches: states stored
-  std::uint64_t collision_checks = 0;
+  double raw_cost = 0.0;  // the path's length as the planner returned it
+  double plan_ms = 0.0;   // planning alone
 };
 
 // Throws InputError for an unknown algorithm, bad options, or a start/goal that is not free.

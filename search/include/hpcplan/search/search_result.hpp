@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "hpcplan/core/result.hpp"
 #include "hpcplan/core/status.hpp"
 
 namespace hpcplan::search {
@@ -9,15 +10,7 @@ namespace hpcplan::search {
 using hpcplan::Status;
 using hpcplan::to_string;
 
-struct Counters {
-  std::uint64_t expanded = 0;          // states taken off the frontier and expanded
-  std::uint64_t generated = 0;         // legal successors produced by the graph
-  std::uint64_t reopened = 0;          // closed states improved and expanded again
-  std::uint64_t collision_checks = 0;  // validity evaluations made by the graph
-  std::uint64_t peak_states = 0;       // most states stored in the visited map
-  std::uint64_t peak_open = 0;         // largest frontier
-  double time_ms = 0.0;                // search time, excluding field set-up
-};
+using hpcplan::Counters;
 
 // One rank's share of a distributed search (plain data so ranks can gather it as bytes).
 struct RankCounters {
@@ -40,12 +33,6 @@ struct RankCounters {
 };
 
 template <class State>
-struct Result {
-  Status status = Status::no_path;
-  std::vector<State> path;  // start..goal when solved
-  double cost = 0.0;        // sum of re-validated move lengths along `path`
-  std::uint64_t hops = 0;
-  Counters counters;
-};
+using Result = hpcplan::Result<State>;
 
 }  // namespace hpcplan::search

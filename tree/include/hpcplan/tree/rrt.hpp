@@ -21,14 +21,15 @@ TreeResult<W::kDim> rrt(const W& world, const env::Vec<W::kDim>& start,
   Sampler<D> sampler(world.bounds(), start, goal, o.seed);
   auto done = [&](Status status) {
     r.status = status;
-    r.tree_size = tree.points.size();
-    r.collision_checks = CheckCounter::this_thread() - checks0;
-    r.time_ms = clock.milliseconds();
+    r.counters.peak_states = tree.points.size();
+    r.counters.collision_checks = CheckCounter::this_thread() - checks0;
+    r.counters.time_ms = clock.milliseconds();
     if (status == Status::solved) {
       r.path = tree.branch(static_cast<std::uint32_t>(tree.points.size() - 1));
-      r.length = env::polyline_length<D>(r.path);
-      r.first_time_ms = r.time_ms;
-      r.first_length = r.length;
+      r.cost = env::polyline_length<D>(r.path);
+      r.hops = r.path.size() - 1;
+      r.counters.first_solution_ms = r.counters.time_ms;
+      r.counters.first_cost = r.cost;
     }
     return r;
   };
@@ -38,8 +39,8 @@ TreeResult<W::kDim> rrt(const W& world, const env::Vec<W::kDim>& start,
   }
   for (;;) {
     if (const auto why = stop.poll()) return done(*why);
-    if (o.max_samples && r.samples >= o.max_samples) return done(Status::no_path);
-    ++r.samples;
+    if (o.max_samples && r.counters.samples >= o.max_samples) return done(Status::no_path);
+    ++r.counters.samples;
     const env::Vec<D> target = sampler.unit() < o.goal_bias ? goal : sampler.uniform();
     const auto near = static_cast<std::uint32_t>(tree.index.nearest(target));
     const env::Vec<D> q = steer<D>(tree.points[near], target, step);

@@ -24,8 +24,8 @@ TreeResult<W::kDim> rrt_connect(const W& world, const env::Vec<W::kDim>& start,
   TreeResult<D> r;
   auto done = [&](Status status, std::uint32_t a = 0, std::uint32_t b = 0) {
     r.status = status;
-    r.tree_size = from_start.points.size() + from_goal.points.size();
-    r.collision_checks = CheckCounter::this_thread() - checks0;
+    r.counters.peak_states = from_start.points.size() + from_goal.points.size();
+    r.counters.collision_checks = CheckCounter::this_thread() - checks0;
     if (status == Status::solved) {
       r.path = from_start.branch(a);
       auto back = from_goal.branch(b);
@@ -33,10 +33,12 @@ TreeResult<W::kDim> rrt_connect(const W& world, const env::Vec<W::kDim>& start,
       std::size_t skip = r.path.back() == back.back() ? 1 : 0;
       for (auto it = back.rbegin() + static_cast<std::ptrdiff_t>(skip); it != back.rend(); ++it)
         r.path.push_back(*it);
-      r.length = env::polyline_length<D>(r.path);
+      r.cost = env::polyline_length<D>(r.path);
+      r.hops = r.path.size() - 1;
     }
-    r.time_ms = clock.milliseconds();
-    if (status == Status::solved) r.first_time_ms = r.time_ms, r.first_length = r.length;
+    r.counters.time_ms = clock.milliseconds();
+    if (status == Status::solved)
+      r.counters.first_solution_ms = r.counters.time_ms, r.counters.first_cost = r.cost;
     return r;
   };
   if (world.segment_free(start, goal)) return done(Status::solved, 0, 0);
@@ -45,8 +47,8 @@ TreeResult<W::kDim> rrt_connect(const W& world, const env::Vec<W::kDim>& start,
   Tree<D>* b = &from_goal;
   for (;;) {
     if (const auto why = stop.poll()) return done(*why);
-    if (o.max_samples && r.samples >= o.max_samples) return done(Status::no_path);
-    ++r.samples;
+    if (o.max_samples && r.counters.samples >= o.max_samples) return done(Status::no_path);
+    ++r.counters.samples;
     const env::Vec<D> target = sampler.uniform();
     const auto near = static_cast<std::uint32_t>(a->index.nearest(target));
     const env::Vec<D> q = steer<D>(a->points[near], target, step);

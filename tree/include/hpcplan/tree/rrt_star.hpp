@@ -66,11 +66,11 @@ TreeResult<W::kDim> rrt_star(const W& world, const env::Vec<W::kDim>& start,
       status = *why;
       break;
     }
-    if (o.max_samples && r.samples >= o.max_samples) {
+    if (o.max_samples && r.counters.samples >= o.max_samples) {
       status = Status::no_path;
       break;
     }
-    ++r.samples;
+    ++r.counters.samples;
     const double best = solved() ? cost[goal_vertex] : std::numeric_limits<double>::infinity();
     env::Vec<D> target;
     if (!solved() && sampler.unit() < o.goal_bias)
@@ -106,21 +106,23 @@ TreeResult<W::kDim> rrt_star(const W& world, const env::Vec<W::kDim>& start,
     } else if (!solved() && env::distance<D>(q, goal) <= step && world.segment_free(q, goal)) {
       goal_vertex = add(goal, qv, best_cost + env::distance<D>(q, goal));
     }
-    if (solved() && r.first_time_ms < 0) {
-      r.first_time_ms = clock.milliseconds();
-      r.first_length = cost[goal_vertex];
+    if (solved() && r.counters.first_solution_ms < 0) {
+      r.counters.first_solution_ms = clock.milliseconds();
+      r.counters.first_cost = cost[goal_vertex];
     }
   }
   if (solved()) {
     status = Status::solved;
     r.path = tree.branch(goal_vertex);
-    r.length = env::polyline_length<D>(r.path);
-    if (r.first_time_ms < 0) r.first_time_ms = clock.milliseconds(), r.first_length = r.length;
+    r.cost = env::polyline_length<D>(r.path);
+    r.hops = r.path.size() - 1;
+    if (r.counters.first_solution_ms < 0)
+      r.counters.first_solution_ms = clock.milliseconds(), r.counters.first_cost = r.cost;
   }
   r.status = status;
-  r.tree_size = points.size();
-  r.collision_checks = CheckCounter::this_thread() - checks0;
-  r.time_ms = clock.milliseconds();
+  r.counters.peak_states = points.size();
+  r.counters.collision_checks = CheckCounter::this_thread() - checks0;
+  r.counters.time_ms = clock.milliseconds();
   return r;
 }
 

@@ -11,6 +11,7 @@
 
 #include "hpcplan/core/check_counter.hpp"
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/core/result.hpp"
 #include "hpcplan/core/splitmix64.hpp"
 #include "hpcplan/core/status.hpp"
 #include "hpcplan/core/stop.hpp"
@@ -31,18 +32,10 @@ struct TreeOptions {
   bool stop_at_first = false;  // RRT*: return the first solution
 };
 
+// The one Result: path start..goal exactly, cost = its length, counters.peak_states = tree
+// vertices, counters.samples, counters.first_solution_ms / first_cost for the first path.
 template <int D>
-struct TreeResult {
-  Status status = Status::no_path;
-  std::vector<env::Vec<D>> path;  // start..goal, exactly
-  double length = 0.0;
-  std::uint64_t tree_size = 0;  // vertices in the tree(s)
-  std::uint64_t samples = 0;
-  std::uint64_t collision_checks = 0;
-  double time_ms = 0.0;
-  double first_time_ms = -1.0;  // when the first path was found
-  double first_length = -1.0;
-};
+using TreeResult = Result<env::Vec<D>>;
 
 template <int D>
 double default_step(const env::Aabb<D>& box) {
