@@ -6,7 +6,6 @@
 #include <ompl/geometric/planners/informedtrees/ABITstar.h>
 #include <ompl/geometric/planners/informedtrees/AITstar.h>
 #include <ompl/geometric/planners/informedtrees/BITstar.h>
-#include <ompl/geometric/planners/prm/LazyPRMstar.h>
 #include <ompl/geometric/planners/prm/PRMstar.h>
 #include <ompl/geometric/planners/rrt/InformedRRTstar.h>
 #include <ompl/geometric/planners/rrt/RRT.h>
@@ -56,10 +55,11 @@ const std::vector<OmplPlannerKind>& ompl_planners() {
         kind<og::InformedRRTstar>("informedrrtstar", "InformedRRTstar", "Informed RRT* (OMPL)",
                                   true),
         kind<og::PRMstar>("prmstar", "PRMstar", "PRM* (OMPL)", true),
-        kind<og::LazyPRMstar>("lazyprmstar", "LazyPRMstar", "Lazy PRM* (OMPL)", true),
     };
-    // KPIECE is left out: with the default projection of a 2D real vector space, OMPL 1.5's
-    // KPIECE1 fails an Eigen assertion (abort) on the sphere world.
+    // Left out: KPIECE (with the default projection of a 2D real vector space, OMPL 1.5's
+    // KPIECE1 fails an Eigen assertion and aborts on the sphere world) and Lazy PRM* (OMPL
+    // 1.5's LazyPRMstar leaks every state it allocates: thousands per run under
+    // LeakSanitizer, which would grow without end over a sweep).
     // fmt_radius: the same samples, radius rule with multiplier 1.
     auto& radius = t[4];
     radius.make = [](const ob::SpaceInformationPtr& si) -> ob::PlannerPtr {

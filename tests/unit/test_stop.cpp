@@ -15,6 +15,7 @@
 #include "hpcplan/env/box_map_io.hpp"
 #include "hpcplan/graph/continuous_grid.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
+#include "hpcplan/sampling/ptc_stop.hpp"
 #include "hpcplan/search/best_first.hpp"
 #include "hpcplan/search/dense_visited_map.hpp"
 #include "hpcplan/tree/rrt_star.hpp"
@@ -80,6 +81,26 @@ TEST(Stop, AnotherThreadCancelsAGridSearchWithinMilliseconds) {
   // The token is read once per expansion: the search ends within one expansion of the request
   // (the best of three trials, so a descheduled thread on a busy machine cannot fail it).
   EXPECT_LT(*std::min_element(latencies.begin(), latencies.end()), 10.0);
+}
+
+// OMPL's termination condition, evaluated on the watcher thread, fires the token a search
+// polls; a run that ends first stops the watcher without the condition ever turning true.
+TEST(Stop, OmplTerminationConditionFiresTheToken) {
+  std::atomic<bool> done{false};
+  const ompl::base::PlannerTerminationCondition ptc([&done] { return done.load(); });
+  {
+    const sampling::PtcStopSource source(ptc);
+    Stop stop(source.token());
+    EXPECT_FALSE(stop.check());
+    const auto asked = Clock::now();
+    done = true;
+    while (!stop.check() && ms_since(asked) < 5000)
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+    EXPECT_EQ(stop.check(), Status::cancelled);
+    EXPECT_LT(ms_since(asked), 1000.0);
+  }
+  done = false;
+  { const sampling::PtcStopSource quiet(ptc); }  // ends at once: the run was over first
 }
 
 TEST(Stop, TwoPlannersShareOneWorldWhileAThirdCancels) {

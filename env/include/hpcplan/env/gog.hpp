@@ -3,6 +3,8 @@
 // [0, extent)^d. Each axis maps its coordinate to a two-bit "level"; a state is blocked when
 // the levels summed over all axes reach the threshold c_v. Because the field is a sum of
 // per-axis terms, both the exact blocked fraction and incremental neighbour checks are cheap.
+//
+// Threads: immutable once built; safe for any number of concurrent readers.
 #include <cstdint>
 #include <span>
 #include <vector>

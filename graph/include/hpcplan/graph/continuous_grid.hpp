@@ -9,6 +9,9 @@
 // A move is the parent state itself: any-angle searches (Lazy Theta*) give a state a parent
 // that is not its neighbour, and the hybrid's sampled states have no lattice direction.
 //
+// Threads: a grid belongs to one run (it caches cell tests and draws samples in const
+// methods); the world it reads may be shared by several runs.
+//
 // Optionally, every expansion also draws `samples_per_expansion` uniform points and adds the
 // nearest one it can reach as a new state (the seed 003 hybrid's RRT-style successors).
 #include <algorithm>

@@ -1,6 +1,8 @@
 #pragma once
 // A dense 2D occupancy grid, 8-connected: diagonal moves need both orthogonal cells free (the
 // seed rule in 2D). States are flat cell indices; the same search engine runs on it unchanged.
+//
+// Threads: one run at a time (its check counter is a plain member).
 #include <cstdint>
 #include <stdexcept>
 #include <vector>

@@ -11,6 +11,9 @@
 // Validity during expansion is incremental: the GOG level sum of a neighbour differs from the
 // expanded state's in one or two axis terms, so a check is O(1) rather than O(d). Each such
 // evaluation of a state's validity counts as one collision check.
+//
+// Threads: a graph belongs to one run (its check counter is a plain member); the GOG field it
+// reads may be shared.
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>

@@ -9,6 +9,8 @@
 // points, skips non-tangent segments, asks the engine whether the edge could improve the
 // neighbour's cost, and only then runs the exact segment test. That keeps the collision tests
 // to the few edges that matter, not the n^2 of an explicit graph.
+//
+// Threads: a graph belongs to one run; the world it reads may be shared.
 #include <cstdint>
 #include <utility>
 #include <vector>

@@ -3,6 +3,8 @@
 // flag per state) and the open list (a binary heap on f, or a FIFO for BFS). The serial engine
 // (best_first.hpp) and the distributed engines (mpi/) both drive this one store, so the rules
 // for inserting, improving, reopening and popping states are written once.
+//
+// Threads: a store belongs to one run (one rank's search) on one thread.
 #include <algorithm>
 #include <concepts>
 #include <cstdint>
