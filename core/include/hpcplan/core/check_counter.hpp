@@ -1,10 +1,13 @@
 #pragma once
 // A collision-check counter that an immutable world may bump from const queries while several
-// planner threads read the world at once. Relaxed atomic increments: each count is exact, and
-// no ordering with anything else is implied. Copying a world copies the count so far.
+// planner threads read the world at once.
 //
 // A run's own count is the change of this_thread() over the run (a run plans on one thread):
-// the world's total also counts the other threads that share it.
+// a thread-local count, exact whatever the other threads do. The world's total is a relaxed
+// atomic bumped by a plain load and store rather than a locked add (a locked add on every
+// segment test cost 10-20% of a tightening-heavy plan): exact while one thread uses the world,
+// and free of data races but possibly short by the overlapping increments when several do.
+// Copying a world copies the count so far.
 #include <atomic>
 #include <cstdint>
 
@@ -20,7 +23,7 @@ class CheckCounter {
   }
 
   void add(std::uint64_t k = 1) const {
-    n_.fetch_add(k, std::memory_order_relaxed);
+    n_.store(n_.load(std::memory_order_relaxed) + k, std::memory_order_relaxed);
     thread_count() += k;
   }
   std::uint64_t value() const { return n_.load(std::memory_order_relaxed); }

@@ -113,8 +113,11 @@ void subdivide(std::vector<Vec<D>>& path, double max_segment) {
   for (std::size_t i = 1; i < path.size(); ++i) {
     const int pieces =
         std::max(1, static_cast<int>(std::ceil(distance<D>(path[i - 1], path[i]) / max_segment)));
-    for (int j = 1; j <= pieces; ++j)
+    // The last piece ends on the vertex itself: lerp at 1 may miss it by a rounding step, and
+    // the path's end must stay exactly the goal.
+    for (int j = 1; j < pieces; ++j)
       fine.push_back(lerp<D>(path[i - 1], path[i], double(j) / pieces));
+    fine.push_back(path[i]);
   }
   path.swap(fine);
 }

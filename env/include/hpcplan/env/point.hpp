@@ -22,11 +22,10 @@ double distance(const Vec<D>& a, const Vec<D>& b) {
   return std::sqrt(s);
 }
 
-// a + t (b - a), exactly b at t = 1: a + (b - a) rounds to a neighbour of b (4.9 + (0.1 - 4.9)
-// is 0.1000000000000005), and a subdivided path must still end exactly at its goal.
+// a + t (b - a). Not exactly b at t = 1: a + (b - a) may round to a neighbour of b (4.9 +
+// (0.1 - 4.9) is 0.1000000000000005), so code that must land on b uses b itself.
 template <int D>
 Vec<D> lerp(const Vec<D>& a, const Vec<D>& b, double t) {
-  if (t == 1.0) return b;
   Vec<D> p;
   for (int k = 0; k < D; ++k) p[k] = a[k] + t * (b[k] - a[k]);
   return p;
