@@ -14,13 +14,19 @@
 
 namespace hpcplan {
 
+// Progress is shown on a terminal, or anywhere when HPCPLAN_PROGRESS=1 asks for it.
+inline bool progress_wanted(bool tty) {
+  const char* forced = std::getenv("HPCPLAN_PROGRESS");
+  return tty || (forced != nullptr && std::string(forced) == "1");
+}
+
 class Progress {
  public:
   Progress(std::string what, std::size_t total)
-      : what_(std::move(what)), total_(total), tty_(::isatty(STDERR_FILENO) == 1) {
-    const char* forced = std::getenv("HPCPLAN_PROGRESS");
-    enabled_ = tty_ || (forced != nullptr && std::string(forced) == "1");
-  }
+      : what_(std::move(what)),
+        total_(total),
+        tty_(::isatty(STDERR_FILENO) == 1),
+        enabled_(progress_wanted(tty_)) {}
   ~Progress() {
     if (enabled_ && tty_ && done_ > 0) std::fputc('\n', stderr);
   }
@@ -44,7 +50,7 @@ class Progress {
   std::size_t total_;
   std::size_t done_ = 0;
   bool tty_;
-  bool enabled_ = false;
+  bool enabled_;
   Stopwatch clock_;
 };
 
@@ -58,10 +64,8 @@ class RunProgress {
       : what_(std::move(what)),
         budget_(budget),
         quiet_s_(quiet_s),
-        tty_(::isatty(STDERR_FILENO) == 1) {
-    const char* forced = std::getenv("HPCPLAN_PROGRESS");
-    enabled_ = tty_ || (forced != nullptr && std::string(forced) == "1");
-  }
+        tty_(::isatty(STDERR_FILENO) == 1),
+        enabled_(progress_wanted(tty_)) {}
   ~RunProgress() {
     if (shown_ && tty_) std::fputc('\n', stderr);
   }
@@ -88,7 +92,7 @@ class RunProgress {
   std::uint64_t budget_;
   double quiet_s_;
   bool tty_;
-  bool enabled_ = false;
+  bool enabled_;
   bool shown_ = false;
   double last_ = 0.0;
   Stopwatch clock_;
