@@ -78,16 +78,8 @@ Connectivity parse_connectivity(std::string_view name) {
 }
 
 std::string_view to_string(GridAlgorithm a) {
-  switch (a) {
-    case GridAlgorithm::astar:
-      return "astar";
-    case GridAlgorithm::wastar:
-      return "wastar";
-    case GridAlgorithm::dijkstra:
-      return "dijkstra";
-    case GridAlgorithm::bfs:
-      return "bfs";
-  }
+  for (const GridEntry& e : grid_entries())
+    if (e.algorithm == a) return e.spec.name;
   return "?";
 }
 std::string_view to_string(HeuristicKind h) {

@@ -2,7 +2,6 @@
 // How a planning run ended. Every planner in hpcplan (lattice searches, continuous-world
 // searches, tree planners, OMPL planners, the distributed search) answers with one of these;
 // each is an answer (exit 0 on the command line), not a failure.
-#include <optional>
 #include <string_view>
 
 namespace hpcplan {
@@ -29,13 +28,6 @@ constexpr std::string_view to_string(Status s) {
       return "cancelled";
   }
   return "unknown";
-}
-
-constexpr std::optional<Status> parse_status(std::string_view name) {
-  for (Status s : {Status::solved, Status::no_path, Status::budget_exceeded, Status::timeout,
-                   Status::cancelled})
-    if (to_string(s) == name) return s;
-  return std::nullopt;
 }
 
 }  // namespace hpcplan

@@ -30,14 +30,6 @@ class Stop {
     return s;
   }
 
-  // The same deadline, watching `token` as well.
-  Stop with_token(std::stop_token token) const {
-    Stop s = *this;
-    s.token_ = std::move(token);
-    return s;
-  }
-
-  bool has_deadline() const { return deadline_.has_value(); }
   bool can_stop() const { return deadline_.has_value() || token_.stop_possible(); }
 
   // Why to stop now, if at all: `cancelled` wins over `timeout`. Reads the clock every call.

@@ -10,11 +10,7 @@ template <env::World W>
 TreeResult<W::kDim> rrt(const W& world, const env::Vec<W::kDim>& start,
                         const env::Vec<W::kDim>& goal, const TreeOptions& o) {
   constexpr int D = W::kDim;
-  check_query(world, start, goal);
-  Stopwatch clock;
-  Stop stop = run_stop(o);
-  const std::uint64_t checks0 = CheckCounter::this_thread();
-  const double step = step_of<D>(o, world.bounds());
+  TreeRun<D> run(world, start, goal, o);
   TreeResult<D> r;
   Tree<D> tree;
   tree.add_root(start);
@@ -22,8 +18,8 @@ TreeResult<W::kDim> rrt(const W& world, const env::Vec<W::kDim>& start,
   auto done = [&](Status status) {
     r.status = status;
     r.counters.peak_states = tree.points.size();
-    r.counters.collision_checks = CheckCounter::this_thread() - checks0;
-    r.counters.time_ms = clock.milliseconds();
+    r.counters.collision_checks = run.checks();
+    r.counters.time_ms = run.clock.milliseconds();
     if (status == Status::solved) {
       r.path = tree.branch(static_cast<std::uint32_t>(tree.points.size() - 1));
       r.cost = env::polyline_length<D>(r.path);
@@ -38,15 +34,15 @@ TreeResult<W::kDim> rrt(const W& world, const env::Vec<W::kDim>& start,
     return done(Status::solved);
   }
   for (;;) {
-    if (const auto why = stop.poll()) return done(*why);
+    if (const auto why = run.stop.poll()) return done(*why);
     if (o.max_samples && r.counters.samples >= o.max_samples) return done(Status::no_path);
     ++r.counters.samples;
     const env::Vec<D> target = sampler.unit() < o.goal_bias ? goal : sampler.uniform();
     const auto near = static_cast<std::uint32_t>(tree.index.nearest(target));
-    const env::Vec<D> q = steer<D>(tree.points[near], target, step);
+    const env::Vec<D> q = steer<D>(tree.points[near], target, run.step);
     if (!world.segment_free(tree.points[near], q)) continue;
     const std::uint32_t added = tree.add(q, near);
-    if (env::distance<D>(q, goal) <= step && world.segment_free(q, goal)) {
+    if (env::distance<D>(q, goal) <= run.step && world.segment_free(q, goal)) {
       if (!(q == goal)) tree.add(goal, added);
       return done(Status::solved);
     }

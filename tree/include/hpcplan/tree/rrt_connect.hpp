@@ -12,11 +12,7 @@ template <env::World W>
 TreeResult<W::kDim> rrt_connect(const W& world, const env::Vec<W::kDim>& start,
                                 const env::Vec<W::kDim>& goal, const TreeOptions& o) {
   constexpr int D = W::kDim;
-  check_query(world, start, goal);
-  Stopwatch clock;
-  Stop stop = run_stop(o);
-  const std::uint64_t checks0 = CheckCounter::this_thread();
-  const double step = step_of<D>(o, world.bounds());
+  TreeRun<D> run(world, start, goal, o);
   Tree<D> from_start, from_goal;
   from_start.add_root(start);
   from_goal.add_root(goal);
@@ -25,7 +21,7 @@ TreeResult<W::kDim> rrt_connect(const W& world, const env::Vec<W::kDim>& start,
   auto done = [&](Status status, std::uint32_t a = 0, std::uint32_t b = 0) {
     r.status = status;
     r.counters.peak_states = from_start.points.size() + from_goal.points.size();
-    r.counters.collision_checks = CheckCounter::this_thread() - checks0;
+    r.counters.collision_checks = run.checks();
     if (status == Status::solved) {
       r.path = from_start.branch(a);
       auto back = from_goal.branch(b);
@@ -36,7 +32,7 @@ TreeResult<W::kDim> rrt_connect(const W& world, const env::Vec<W::kDim>& start,
       r.cost = env::polyline_length<D>(r.path);
       r.hops = r.path.size() - 1;
     }
-    r.counters.time_ms = clock.milliseconds();
+    r.counters.time_ms = run.clock.milliseconds();
     if (status == Status::solved)
       r.counters.first_solution_ms = r.counters.time_ms, r.counters.first_cost = r.cost;
     return r;
@@ -46,18 +42,18 @@ TreeResult<W::kDim> rrt_connect(const W& world, const env::Vec<W::kDim>& start,
   Tree<D>* a = &from_start;
   Tree<D>* b = &from_goal;
   for (;;) {
-    if (const auto why = stop.poll()) return done(*why);
+    if (const auto why = run.stop.poll()) return done(*why);
     if (o.max_samples && r.counters.samples >= o.max_samples) return done(Status::no_path);
     ++r.counters.samples;
     const env::Vec<D> target = sampler.uniform();
     const auto near = static_cast<std::uint32_t>(a->index.nearest(target));
-    const env::Vec<D> q = steer<D>(a->points[near], target, step);
+    const env::Vec<D> q = steer<D>(a->points[near], target, run.step);
     if (world.segment_free(a->points[near], q)) {
       const std::uint32_t qa = a->add(q, near);
       // Connect: the other tree walks towards q.
       auto nb = static_cast<std::uint32_t>(b->index.nearest(q));
       for (;;) {
-        const env::Vec<D> next = steer<D>(b->points[nb], q, step);
+        const env::Vec<D> next = steer<D>(b->points[nb], q, run.step);
         if (!world.segment_free(b->points[nb], next)) break;
         if (next == q) {
           // Joined: the start tree's vertex and the goal tree's vertex meet at the same point.

@@ -14,11 +14,7 @@ template <env::World W>
 TreeResult<W::kDim> rrt_star(const W& world, const env::Vec<W::kDim>& start,
                              const env::Vec<W::kDim>& goal, const TreeOptions& o) {
   constexpr int D = W::kDim;
-  check_query(world, start, goal);
-  Stopwatch clock;
-  Stop stop = run_stop(o);
-  const std::uint64_t checks0 = CheckCounter::this_thread();
-  const double step = step_of<D>(o, world.bounds());
+  TreeRun<D> run(world, start, goal, o);
   const double gamma = o.gamma_factor * 2.0 * std::pow(1.0 + 1.0 / D, 1.0 / D) *
                        std::pow(world.free_volume() / Sampler<D>::unit_ball_volume(), 1.0 / D);
 
@@ -62,7 +58,7 @@ TreeResult<W::kDim> rrt_star(const W& world, const env::Vec<W::kDim>& start,
   Status status = Status::timeout;
   const bool straight = solved();  // the straight segment is optimal: nothing to refine
   while (!straight && !(solved() && o.stop_at_first)) {
-    if (const auto why = stop.poll()) {
+    if (const auto why = run.stop.poll()) {
       status = *why;
       break;
     }
@@ -78,12 +74,12 @@ TreeResult<W::kDim> rrt_star(const W& world, const env::Vec<W::kDim>& start,
     else
       target = o.informed ? sampler.informed(best) : sampler.uniform();
     const auto nearest = static_cast<std::uint32_t>(index.nearest(target));
-    const env::Vec<D> q = steer<D>(points[nearest], target, step);
+    const env::Vec<D> q = steer<D>(points[nearest], target, run.step);
     if (q == goal && solved()) continue;
     if (!world.segment_free(points[nearest], q)) continue;
 
     const double n = static_cast<double>(points.size());
-    const double radius = std::min(gamma * std::pow(std::log(n + 1) / (n + 1), 1.0 / D), step);
+    const double radius = std::min(gamma * std::pow(std::log(n + 1) / (n + 1), 1.0 / D), run.step);
     index.within(q, radius, near);
     // Cheapest parent among the neighbours that see q (the nearest vertex always does).
     std::uint32_t best_parent = nearest;
@@ -103,11 +99,11 @@ TreeResult<W::kDim> rrt_star(const W& world, const env::Vec<W::kDim>& start,
     }
     if (q == goal) {
       goal_vertex = qv;
-    } else if (!solved() && env::distance<D>(q, goal) <= step && world.segment_free(q, goal)) {
+    } else if (!solved() && env::distance<D>(q, goal) <= run.step && world.segment_free(q, goal)) {
       goal_vertex = add(goal, qv, best_cost + env::distance<D>(q, goal));
     }
     if (solved() && r.counters.first_solution_ms < 0) {
-      r.counters.first_solution_ms = clock.milliseconds();
+      r.counters.first_solution_ms = run.clock.milliseconds();
       r.counters.first_cost = cost[goal_vertex];
     }
   }
@@ -117,12 +113,12 @@ TreeResult<W::kDim> rrt_star(const W& world, const env::Vec<W::kDim>& start,
     r.cost = env::polyline_length<D>(r.path);
     r.hops = r.path.size() - 1;
     if (r.counters.first_solution_ms < 0)
-      r.counters.first_solution_ms = clock.milliseconds(), r.counters.first_cost = r.cost;
+      r.counters.first_solution_ms = run.clock.milliseconds(), r.counters.first_cost = r.cost;
   }
   r.status = status;
   r.counters.peak_states = points.size();
-  r.counters.collision_checks = CheckCounter::this_thread() - checks0;
-  r.counters.time_ms = clock.milliseconds();
+  r.counters.collision_checks = run.checks();
+  r.counters.time_ms = run.clock.milliseconds();
   return r;
 }
 

@@ -175,4 +175,21 @@ void check_query(const W& world, const env::Vec<W::kDim>& start, const env::Vec<
     throw InputError("the goal " + env::format_point<W::kDim>(goal) + " is " + why);
 }
 
+// What every tree planner sets up before its first sample: the query checked (InputError if the
+// start or goal is not free), its clock, its own stop condition, the thread's check count at the
+// start (a run's checks are the change of it) and the steering distance.
+template <int D>
+struct TreeRun {
+  template <class W>
+  TreeRun(const W& world, const env::Vec<D>& start, const env::Vec<D>& goal, const TreeOptions& o)
+      : stop((check_query(world, start, goal), run_stop(o))), step(step_of<D>(o, world.bounds())) {}
+
+  std::uint64_t checks() const { return CheckCounter::this_thread() - checks0; }
+
+  Stopwatch clock;
+  Stop stop;
+  std::uint64_t checks0 = CheckCounter::this_thread();
+  double step;
+};
+
 }  // namespace hpcplan::tree
