@@ -116,6 +116,7 @@ Action register_grid_command(CLI::App& app) {
 
     a.dist.scheme = dist::parse_scheme(a.mode);
     dist::validate(a.dist);
+    if (!a.output.empty()) require_writable_destination(a.output, "--output");
 
     if (!a.simulate_ranks.empty()) {
       if (context.comm && context.comm->size() > 1)

@@ -9,7 +9,9 @@
 #include <ompl/util/Console.h>
 
 #include "commands.hpp"
+#include "hpcplan/core/atomic_file.hpp"
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/io/ompl_bench_csv.hpp"
 #include "hpcplan/plan/ompl_benchmark.hpp"
 #include "number_options.hpp"
 
@@ -106,7 +108,12 @@ Action register_ompl_command(CLI::App& app) {
           "`mpirun -np P hpcplan grid`");
     if (!args->verbose) ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
     args->options.shortcut = !args->no_shortcut;
-    const auto result = plan::run_ompl_benchmark(args->options, args->log, args->csv);
+    plan::validate(args->options);
+    if (!args->log.empty()) require_writable_destination(args->log, "--log");
+    if (!args->csv.empty()) require_writable_destination(args->csv, "--csv");
+    const auto result = plan::run_ompl_benchmark(args->options);
+    if (!args->log.empty()) write_file_atomically(args->log, result.ompl_log);
+    if (!args->csv.empty()) write_file_atomically(args->csv, io::ompl_bench_csv(result));
     print_summary(args->options, result);
     for (const auto& row : result.rows)
       if (!row.path_valid)

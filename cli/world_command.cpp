@@ -114,6 +114,8 @@ Action register_world_command(CLI::App& app, const std::string& name, const std:
   return [args, name, load](const Context& context) {
     if (context.comm && context.comm->size() > 1)
       throw InputError(name + " runs in one process; start it without mpirun");
+    if (!args->output.empty()) require_writable_destination(args->output, "--output");
+    if (!args->path_out.empty()) require_writable_destination(args->path_out, "--path-out");
     return run(*args, load(args->map));
   };
 }

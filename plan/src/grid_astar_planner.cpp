@@ -10,6 +10,7 @@
 #include <ompl/geometric/PathSimplifier.h>
 
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/env/gog_world.hpp"
 #include "hpcplan/sampling/path_tightening.hpp"
 #include "hpcplan/sampling/ptc_stop.hpp"
 
@@ -18,8 +19,8 @@ namespace og = ompl::geometric;
 
 namespace hpcplan::plan {
 
-GridAStarPlanner::GridAStarPlanner(const sampling::GogWorld& world, Connectivity connectivity)
-    : ob::Planner(world.si, "GridAStar"), world_(world), connectivity_(connectivity) {
+GridAStarPlanner::GridAStarPlanner(const sampling::GogSpace& space, Connectivity connectivity)
+    : ob::Planner(space.si, "GridAStar"), space_(space), connectivity_(connectivity) {
   specs_.approximateSolutions = false;
   specs_.optimizingPaths = false;  // one answer per solve; it does not improve over time
   specs_.directed = true;
@@ -44,19 +45,20 @@ ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition&
   const auto* goal = dynamic_cast<const ob::GoalState*>(pdef_->getGoal().get());
   if (goal == nullptr) return ob::PlannerStatus::UNRECOGNIZED_GOAL_TYPE;
   const ob::State* goal_state = goal->getState();
-  if (!world_.checker->point_is_free(start->as<ob::RealVectorStateSpace::StateType>()->values))
-    return ob::PlannerStatus::INVALID_START;
-  if (!world_.checker->point_is_free(goal_state->as<ob::RealVectorStateSpace::StateType>()->values))
-    return ob::PlannerStatus::INVALID_GOAL;
+  const GogField& field = *space_.field;
+  const double* start_x = start->as<ob::RealVectorStateSpace::StateType>()->values;
+  const double* goal_x = goal_state->as<ob::RealVectorStateSpace::StateType>()->values;
+  if (!env::gog_point_free(field, start_x)) return ob::PlannerStatus::INVALID_START;
+  if (!env::gog_point_free(field, goal_x)) return ob::PlannerStatus::INVALID_GOAL;
 
   GridProblem problem;
-  problem.dims = world_.field->dims();
-  problem.extent = world_.field->extent();
-  problem.gog = world_.field->params();
-  problem.gog.threshold = world_.field->threshold();  // the very field the checker uses
+  problem.dims = field.dims();
+  problem.extent = field.extent();
+  problem.gog = field.params();
+  problem.gog.threshold = field.threshold();  // the very field the checker uses
   problem.connectivity = connectivity_;
-  problem.start = world_.checker->cell_of(start);
-  problem.goal = world_.checker->cell_of(goal_state);
+  problem.start = env::gog_cell_of(field, start_x);
+  problem.goal = env::gog_cell_of(field, goal_x);
   GridSearchOptions options;
   options.algorithm = weight_ > 1.0 ? GridAlgorithm::wastar : GridAlgorithm::astar;
   if (weight_ > 1.0) options.weight = weight_;
@@ -68,7 +70,7 @@ ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition&
     options.cancel = ptc_stop.token();
     last_ = solve_grid(problem, options);
   }
-  world_.checker->add_checks(last_.counters.collision_checks);
+  space_.checks->add(last_.counters.collision_checks);
   if (last_.status == search::Status::timeout || last_.status == search::Status::cancelled)
     return ob::PlannerStatus::TIMEOUT;
   if (last_.status != search::Status::solved) return ob::PlannerStatus::ABORT;

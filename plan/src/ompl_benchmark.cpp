@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <functional>
 #include <map>
 #include <memory>
@@ -17,14 +16,14 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
-#include "hpcplan/core/atomic_file.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/progress.hpp"
 #include "hpcplan/core/stopwatch.hpp"
+#include "hpcplan/env/gog_world.hpp"
 #include "hpcplan/plan/grid_astar_planner.hpp"
 #include "hpcplan/plan/grid_problem.hpp"
 #include "hpcplan/plan/planner_registry.hpp"
-#include "hpcplan/sampling/gog_world.hpp"
+#include "hpcplan/sampling/gog_space.hpp"
 #include "hpcplan/sampling/ompl_planners.hpp"
 
 namespace ob = ompl::base;
@@ -41,15 +40,10 @@ namespace {
 // sampling's one OMPL table. The OMPL names must be unique within one log.
 struct PlannerKind {
   std::string ompl_name;
-  std::function<ob::PlannerPtr(const GogWorld&, const OmplBenchOptions&)> make;
+  std::function<ob::PlannerPtr(const GogSpace&, const OmplBenchOptions&)> make;
 };
 
-double free_volume(const GogField& field) {
-  return std::pow(static_cast<double>(field.extent()), field.dims()) *
-         (1.0 - field.blocked_fraction());
-}
-
-ob::PlannerPtr grid(const GogWorld& w, const OmplBenchOptions& o, bool smoothing) {
+ob::PlannerPtr grid(const GogSpace& w, const OmplBenchOptions& o, bool smoothing) {
   auto p = std::make_shared<GridAStarPlanner>(w);
   p->setShortcut(smoothing);
   p->setWeight(o.grid_weight);
@@ -58,12 +52,12 @@ ob::PlannerPtr grid(const GogWorld& w, const OmplBenchOptions& o, bool smoothing
 }
 
 // FMT* (either connection rule) gets seed 002 eq. 1's sample count and the field's free volume.
-ob::PlannerPtr from_table(const OmplPlannerKind& kind, const GogWorld& w,
+ob::PlannerPtr from_table(const OmplPlannerKind& kind, const GogSpace& w,
                           const OmplBenchOptions& o) {
   ob::PlannerPtr p = kind.make(w.si);
   if (auto* fmt = dynamic_cast<og::FMT*>(p.get())) {
     fmt->setNumSamples(fmt_samples(o.dims));
-    fmt->setFreeSpaceVolume(free_volume(*w.field));
+    fmt->setFreeSpaceVolume(env::gog_free_volume(*w.field));
   }
   return p;
 }
@@ -73,26 +67,19 @@ const std::map<std::string, PlannerKind>& planner_table() {
     std::map<std::string, PlannerKind> t = {
         {"gridastar",
          {"GridAStar",
-          [](const GogWorld& w, const OmplBenchOptions& o) { return grid(w, o, o.shortcut); }}},
+          [](const GogSpace& w, const OmplBenchOptions& o) { return grid(w, o, o.shortcut); }}},
         // The lattice path as found, for the time and quality of the search alone.
         {"gridastar_lattice",
          {"GridAStarLattice",
-          [](const GogWorld& w, const OmplBenchOptions& o) { return grid(w, o, false); }}},
+          [](const GogSpace& w, const OmplBenchOptions& o) { return grid(w, o, false); }}},
     };
     for (const OmplPlannerKind& k : ompl_planners())
-      t[k.name] = {k.ompl_name, [&k](const GogWorld& w, const OmplBenchOptions& o) {
+      t[k.name] = {k.ompl_name, [&k](const GogSpace& w, const OmplBenchOptions& o) {
                      return from_table(k, w, o);
                    }};
     return t;
   }();
   return table;
-}
-
-std::string csv_number(double v, const char* format = "%.6f") {
-  if (v < 0) return "";  // not available
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
 }
 
 }  // namespace
@@ -149,8 +136,7 @@ void validate(const OmplBenchOptions& o) {
     throw InputError("--density must be in (0, 1)");
 }
 
-OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o, const std::string& log_path,
-                                   const std::string& csv_path) {
+OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o) {
   validate(o);
   // OMPL draws every planner's generator from one seeded sequence, so an invocation is
   // reproducible run by run; the seed must be set before any generator exists.
@@ -158,31 +144,33 @@ OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o, const std::string&
   GogParams gog = o.gog;
   gog.seed = o.seed;
   auto field = std::make_shared<const GogField>(o.dims, o.extent, gog);
-  const GogWorld world = make_gog_world(field, o.resolution_cells, parse_motion_check(o.motion));
+  const GogSpace gog_space =
+      make_gog_space(field, o.resolution_cells, parse_motion_check(o.motion));
 
   // The seed's start and goal (III-B), as cell centres.
   const auto start_cell = adjust_to_free(*field, std::vector<int>(o.dims, 0), +1, "start");
   const auto goal_cell = adjust_to_free(*field, std::vector<int>(o.dims, o.extent - 1), -1, "goal");
   OmplBenchResult result;
-  ob::ScopedState<> start(world.space), goal(world.space);
+  ob::ScopedState<> start(gog_space.space), goal(gog_space.space);
   cell_centre(start_cell, start.get());
   cell_centre(goal_cell, goal.get());
   for (int a = 0; a < o.dims; ++a) {
     result.start.push_back(start[a]);
     result.goal.push_back(goal[a]);
   }
-  result.straight_line = world.si->distance(start.get(), goal.get());
+  result.straight_line = gog_space.si->distance(start.get(), goal.get());
 
-  og::SimpleSetup setup(world.si);
+  og::SimpleSetup setup(gog_space.si);
   setup.setStartAndGoalStates(start, goal, 1e-6);
-  setup.setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(world.si));
+  setup.setOptimizationObjective(
+      std::make_shared<ob::PathLengthOptimizationObjective>(gog_space.si));
 
   ompl::tools::Benchmark bench(
       setup, o.experiment.empty() ? "gog-" + std::to_string(o.dims) + "d" : o.experiment);
   std::map<std::string, std::string> user_name;  // OMPL name -> user name
   for (const auto& name : o.planners) {
     const auto& kind = planner_table().at(name);
-    ob::PlannerPtr p = kind.make(world, o);
+    ob::PlannerPtr p = kind.make(gog_space, o);
     p->setName(kind.ompl_name);  // BIT* may amend it (k-nearest BIT* is "kBITstar")
     user_name[p->getName()] = name;
     bench.addPlanner(p);
@@ -192,10 +180,11 @@ OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o, const std::string&
   // planner may call back from its own thread, hence the plain data behind one run).
   Stopwatch clock;
   std::vector<std::pair<double, double>> improvements;
+  std::uint64_t checks_before = 0;
   std::map<std::string, int> run_index;
   Progress progress("hpcplan ompl", o.planners.size() * static_cast<std::size_t>(o.runs));
   bench.setPreRunEvent([&](const ob::PlannerPtr& planner) {
-    world.checker->reset_checks();
+    checks_before = gog_space.checks->value();
     improvements.clear();
     planner->getProblemDefinition()->setIntermediateSolutionCallback(
         [&](const ob::Planner*, const std::vector<const ob::State*>&, const ob::Cost cost) {
@@ -203,49 +192,49 @@ OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o, const std::string&
         });
     clock = Stopwatch();
   });
-  bench.setPostRunEvent(
-      [&](const ob::PlannerPtr& planner, ompl::tools::Benchmark::RunProperties& run) {
-        OmplRunRow row;
-        row.planner = user_name.at(planner->getName());
-        row.dims = o.dims;
-        row.run = run_index[row.planner]++;
-        row.seed = o.seed;
-        row.collision_checks = world.checker->checks();  // before re-validation below
-        const auto t = run.find("time REAL");
-        row.time_s = t != run.end() ? std::stod(t->second) : clock.seconds();
-        const auto pdef = planner->getProblemDefinition();
-        row.solved = pdef->hasExactSolution();
-        row.improvements = improvements;
-        row.anytime = !improvements.empty();
-        if (row.solved) {
-          const auto* path = pdef->getSolutionPath()->as<og::PathGeometric>();
-          row.length_final = path->length();
-          std::vector<std::vector<double>> points;
-          const std::size_t n = path->getStateCount();
-          for (std::size_t i = 0; i < n; ++i) {
-            const double* x = path->getState(i)->as<ob::RealVectorStateSpace::StateType>()->values;
-            points.emplace_back(x, x + o.dims);
-          }
-          const bool ends_ok = n > 0 && world.si->distance(path->getState(0), start.get()) < 1e-9 &&
-                               world.si->distance(path->getState(n - 1), goal.get()) < 1e-6;
-          row.path_valid = ends_ok && first_invalid_step(world, points) < 0;
-          if (row.improvements.empty()) row.improvements.emplace_back(row.time_s, row.length_final);
-          row.time_first_s = row.improvements.front().first;
-          row.length_first = row.improvements.front().second;
-          row.quality_first = row.length_first / result.straight_line;
-          row.quality_final = row.length_final / result.straight_line;
-        }
-        run["collision checks INTEGER"] = std::to_string(row.collision_checks);
-        run["path valid BOOLEAN"] = row.path_valid ? "1" : "0";
-        if (row.solved) {
-          run["time first REAL"] = std::to_string(row.time_first_s);
-          run["quality first REAL"] = std::to_string(row.quality_first);
-          run["quality final REAL"] = std::to_string(row.quality_final);
-        }
-        progress.step(row.planner + " run " + std::to_string(row.run));
-        result.rows.push_back(std::move(row));
-        planner->getProblemDefinition()->setIntermediateSolutionCallback(nullptr);
-      });
+  bench.setPostRunEvent([&](const ob::PlannerPtr& planner,
+                            ompl::tools::Benchmark::RunProperties& run) {
+    OmplRunRow row;
+    row.planner = user_name.at(planner->getName());
+    row.dims = o.dims;
+    row.run = run_index[row.planner]++;
+    row.seed = o.seed;
+    row.collision_checks = gog_space.checks->value() - checks_before;  // before re-validation
+    const auto t = run.find("time REAL");
+    row.time_s = t != run.end() ? std::stod(t->second) : clock.seconds();
+    const auto pdef = planner->getProblemDefinition();
+    row.solved = pdef->hasExactSolution();
+    row.improvements = improvements;
+    row.anytime = !improvements.empty();
+    if (row.solved) {
+      const auto* path = pdef->getSolutionPath()->as<og::PathGeometric>();
+      row.length_final = path->length();
+      std::vector<std::vector<double>> points;
+      const std::size_t n = path->getStateCount();
+      for (std::size_t i = 0; i < n; ++i) {
+        const double* x = path->getState(i)->as<ob::RealVectorStateSpace::StateType>()->values;
+        points.emplace_back(x, x + o.dims);
+      }
+      const bool ends_ok = n > 0 && gog_space.si->distance(path->getState(0), start.get()) < 1e-9 &&
+                           gog_space.si->distance(path->getState(n - 1), goal.get()) < 1e-6;
+      row.path_valid = ends_ok && first_invalid_step(gog_space, points) < 0;
+      if (row.improvements.empty()) row.improvements.emplace_back(row.time_s, row.length_final);
+      row.time_first_s = row.improvements.front().first;
+      row.length_first = row.improvements.front().second;
+      row.quality_first = row.length_first / result.straight_line;
+      row.quality_final = row.length_final / result.straight_line;
+    }
+    run["collision checks INTEGER"] = std::to_string(row.collision_checks);
+    run["path valid BOOLEAN"] = row.path_valid ? "1" : "0";
+    if (row.solved) {
+      run["time first REAL"] = std::to_string(row.time_first_s);
+      run["quality first REAL"] = std::to_string(row.quality_first);
+      run["quality final REAL"] = std::to_string(row.quality_final);
+    }
+    progress.step(row.planner + " run " + std::to_string(row.run));
+    result.rows.push_back(std::move(row));
+    planner->getProblemDefinition()->setIntermediateSolutionCallback(nullptr);
+  });
 
   ompl::tools::Benchmark::Request request(o.time_s, o.memory_mb, static_cast<unsigned>(o.runs),
                                           0.05, false, false, false);
@@ -266,35 +255,10 @@ OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o, const std::string&
       }
   }
 
-  if (!log_path.empty()) {
-    std::ostringstream log;
-    if (!bench.saveResultsToStream(log)) throw RunError("could not write the OMPL log");
-    write_file_atomically(log_path, log.str());
-  }
-  if (!csv_path.empty()) write_file_atomically(csv_path, to_csv(result));
+  std::ostringstream log;
+  if (!bench.saveResultsToStream(log)) throw RunError("could not format the OMPL log");
+  result.ompl_log = log.str();
   return result;
-}
-
-std::string to_csv(const OmplBenchResult& result) {
-  std::ostringstream out;
-  out << "planner,dims,run,seed,solved,time_first_s,length_first,quality_first,time_best_s,"
-         "quality_best,quality_final,length_final,time_s,collision_checks,path_valid,"
-         "improvements\n";
-  for (const auto& r : result.rows) {
-    std::string trace;
-    for (const auto& [t, len] : r.improvements) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%s%.6f:%.6f", trace.empty() ? "" : ";", t, len);
-      trace += buf;
-    }
-    out << r.planner << ',' << r.dims << ',' << r.run << ',' << r.seed << ',' << (r.solved ? 1 : 0)
-        << ',' << csv_number(r.time_first_s) << ',' << csv_number(r.length_first) << ','
-        << csv_number(r.quality_first) << ',' << csv_number(r.time_best_s) << ','
-        << csv_number(r.quality_best) << ',' << csv_number(r.quality_final) << ','
-        << csv_number(r.length_final) << ',' << csv_number(r.time_s) << ',' << r.collision_checks
-        << ',' << (r.path_valid ? 1 : 0) << ',' << trace << '\n';
-  }
-  return out.str();
 }
 
 }  // namespace hpcplan::plan

@@ -9,6 +9,7 @@
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/env/path_shortcut.hpp"
 #include "hpcplan/sampling/ptc_stop.hpp"
+#include "hpcplan/sampling/world_space.hpp"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -36,20 +37,9 @@ class SpaceView {
   SpaceView& operator=(const SpaceView&) = delete;
 
   bool segment_free(const env::Vec<D>& p, const env::Vec<D>& q) const {
-    set(a_, p);
-    set(b_, q);
+    set_state<D>(a_, p);
+    set_state<D>(b_, q);
     return si_->isValid(a_) && si_->checkMotion(a_, b_);
-  }
-
-  static env::Vec<D> point(const ob::State* s) {
-    env::Vec<D> p;
-    const double* v = s->as<ob::RealVectorStateSpace::StateType>()->values;
-    for (int k = 0; k < D; ++k) p[k] = v[k];
-    return p;
-  }
-  static void set(ob::State* s, const env::Vec<D>& p) {
-    double* v = s->as<ob::RealVectorStateSpace::StateType>()->values;
-    for (int k = 0; k < D; ++k) v[k] = p[k];
   }
 
  private:
@@ -64,7 +54,7 @@ TighteningStats tighten_as(const ob::SpaceInformationPtr& si, og::PathGeometric&
                            int max_rounds) {
   const SpaceView<D> view(si);
   std::vector<env::Vec<D>> points;
-  for (const ob::State* s : path.getStates()) points.push_back(SpaceView<D>::point(s));
+  for (const ob::State* s : path.getStates()) points.push_back(point_of<D>(s));
   TighteningStats stats;
   stats.length_before = env::polyline_length<D>(points);
   const PtcStopSource ptc_stop(ptc);
@@ -83,7 +73,7 @@ TighteningStats tighten_as(const ob::SpaceInformationPtr& si, og::PathGeometric&
     states.pop_back();
   }
   while (states.size() < points.size()) states.push_back(si->allocState());
-  for (std::size_t i = 0; i < points.size(); ++i) SpaceView<D>::set(states[i], points[i]);
+  for (std::size_t i = 0; i < points.size(); ++i) set_state<D>(states[i], points[i]);
   return stats;
 }
 

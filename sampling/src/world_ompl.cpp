@@ -18,54 +18,15 @@
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/env/box_world.hpp"
+#include "hpcplan/env/gog_world.hpp"
 #include "hpcplan/env/sphere_world.hpp"
 #include "hpcplan/sampling/ompl_planners.hpp"
+#include "hpcplan/sampling/world_space.hpp"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
 
 namespace hpcplan::sampling {
-
-namespace {
-
-template <int D>
-env::Vec<D> to_point(const ob::State* s) {
-  const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
-  env::Vec<D> p;
-  for (int k = 0; k < D; ++k) p[k] = v->values[k];
-  return p;
-}
-
-template <class W>
-class ExactMotionValidator : public ob::MotionValidator {
- public:
-  ExactMotionValidator(const ob::SpaceInformationPtr& si, const W& world)
-      : ob::MotionValidator(si), world_(world) {}
-  bool checkMotion(const ob::State* a, const ob::State* b) const override {
-    const bool ok = world_.segment_free(to_point<W::kDim>(a), to_point<W::kDim>(b));
-    (ok ? valid_ : invalid_)++;
-    return ok;
-  }
-  // The last valid point to within 1/64 of the motion, each prefix checked exactly.
-  bool checkMotion(const ob::State* a, const ob::State* b,
-                   std::pair<ob::State*, double>& last_valid) const override {
-    if (checkMotion(a, b)) return true;
-    const auto pa = to_point<W::kDim>(a), pb = to_point<W::kDim>(b);
-    double lo = 0.0, hi = 1.0;
-    for (int i = 0; i < 6; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (world_.segment_free(pa, env::lerp<W::kDim>(pa, pb, mid)) ? lo : hi) = mid;
-    }
-    last_valid.second = lo;
-    if (last_valid.first) si_->getStateSpace()->interpolate(a, b, lo, last_valid.first);
-    return false;
-  }
-
- private:
-  const W& world_;
-};
-
-}  // namespace
 
 template <class W>
 tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const env::Vec<W::kDim>& start,
@@ -85,16 +46,8 @@ tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const env::Vec<W::kDim
 
   Stopwatch clock;
   const std::uint64_t checks0 = CheckCounter::this_thread();
-  auto space = std::make_shared<ob::RealVectorStateSpace>(D);
-  ob::RealVectorBounds bounds(D);
-  const auto box = world.bounds();
-  for (int k = 0; k < D; ++k) bounds.setLow(k, box.lo[k]), bounds.setHigh(k, box.hi[k]);
-  space->setBounds(bounds);
-  auto si = std::make_shared<ob::SpaceInformation>(space);
-  si->setStateValidityChecker(
-      [&world](const ob::State* s) { return world.point_free(to_point<D>(s)); });
-  si->setMotionValidator(std::make_shared<ExactMotionValidator<W>>(si, world));
-  si->setup();
+  const ob::SpaceInformationPtr si = make_space_information(world);
+  const ob::StateSpacePtr& space = si->getStateSpace();
   auto pdef = std::make_shared<ob::ProblemDefinition>(si);
   ob::ScopedState<> s(space), g(space);
   for (int k = 0; k < D; ++k) s[k] = start[k], g[k] = goal[k];
@@ -115,7 +68,7 @@ tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const env::Vec<W::kDim
   if (status == ob::PlannerStatus::EXACT_SOLUTION && pdef->getSolutionPath()) {
     const auto& path = *pdef->getSolutionPath()->as<og::PathGeometric>();
     for (std::size_t i = 0; i < path.getStateCount(); ++i)
-      r.path.push_back(to_point<D>(path.getState(i)));
+      r.path.push_back(point_of<D>(path.getState(i)));
     if (!r.path.empty() && !(r.path.front() == start)) r.path.insert(r.path.begin(), start);
     if (!r.path.empty() && !(r.path.back() == goal)) {
       if (world.segment_free(r.path.back(), goal))
@@ -139,6 +92,9 @@ tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const env::Vec<W::kDim
 }
 
 template tree::TreeResult<3> solve_with_ompl(const env::BoxWorld&, const env::Vec<3>&,
+                                             const env::Vec<3>&, const std::string&, double,
+                                             std::uint64_t, std::stop_token);
+template tree::TreeResult<3> solve_with_ompl(const env::GogWorld<3>&, const env::Vec<3>&,
                                              const env::Vec<3>&, const std::string&, double,
                                              std::uint64_t, std::stop_token);
 template tree::TreeResult<2> solve_with_ompl(const env::SphereWorld&, const env::Vec<2>&,

@@ -184,10 +184,14 @@ TEST(Cli, OutputFileIsWrittenWholeOrNotAtAll) {
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(read_file(file), before);
   ASSERT_FALSE(before.empty());
-  // An unwritable destination is a run failure (exit 1), not a crash.
+  // A destination that cannot exist is bad input, refused before the run (exit 2).
   r = run("grid --dims 2 --output /nonexistent-dir/x.json");
-  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("/nonexistent-dir/x.json"), std::string::npos);
+  EXPECT_NE(r.err.find("does not exist"), std::string::npos);
+  r = run("grid --dims 2 --output " + dir.string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("is a directory"), std::string::npos);
   std::size_t entries = 0;
   for ([[maybe_unused]] auto& e : std::filesystem::directory_iterator(dir)) ++entries;
   EXPECT_EQ(entries, 1u);

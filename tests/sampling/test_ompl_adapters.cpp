@@ -1,5 +1,5 @@
-// The OMPL adapters against the native GOG checker, the grid planner inside OMPL, and the
-// benchmark harness's bookkeeping.
+// The one OMPL world adapter on the GOG field (against the lattice and the world's walk), the grid
+// planner inside OMPL, and the benchmark harness's bookkeeping.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,12 +16,14 @@
 #include <ompl/util/Console.h>
 
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/env/gog_world.hpp"
+#include "hpcplan/io/ompl_bench_csv.hpp"
 #include "hpcplan/plan/grid_astar_planner.hpp"
 #include "hpcplan/plan/grid_problem.hpp"
 #include "hpcplan/plan/ompl_benchmark.hpp"
-#include "hpcplan/sampling/gog_motion_validator.hpp"
-#include "hpcplan/sampling/gog_world.hpp"
+#include "hpcplan/sampling/gog_space.hpp"
 #include "hpcplan/sampling/path_tightening.hpp"
+#include "hpcplan/sampling/world_ompl.hpp"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -35,10 +37,10 @@ using plan::GridAStarPlanner;
 using plan::OmplBenchOptions;
 using plan::run_ompl_benchmark;
 
-GogWorld world_for(int dims, int extent, double resolution = 0.1, std::uint64_t seed = 1) {
+GogSpace space_for(int dims, int extent, double resolution = 0.1, std::uint64_t seed = 1) {
   GogParams p;
   p.seed = seed;
-  return make_gog_world(std::make_shared<const GogField>(dims, extent, p), resolution);
+  return make_gog_space(std::make_shared<const GogField>(dims, extent, p), resolution);
 }
 
 std::vector<double> coords(const ob::ScopedState<>& s, int d) {
@@ -47,55 +49,52 @@ std::vector<double> coords(const ob::ScopedState<>& s, int d) {
   return x;
 }
 
+// The adapter's validity checker is the world's point test, counted on the world's counter,
+// for every dimension the runtime dispatch picks.
 class CheckerAgreement : public ::testing::TestWithParam<int> {};
 
-TEST_P(CheckerAgreement, RandomPointsMatchTheNativeChecker) {
+TEST_P(CheckerAgreement, RandomPointsMatchTheLatticeAndAreCounted) {
   const int d = GetParam();
   const int extent = 40;
-  const GogWorld w = world_for(d, extent);
+  const GogSpace w = space_for(d, extent);
+  EXPECT_EQ(w.si->getStateDimension(), static_cast<unsigned>(d));
   std::mt19937_64 rng(1234 + d);
   std::uniform_real_distribution<double> u(0.0, extent);
   ob::ScopedState<> s(w.space);
+  const std::uint64_t before = w.checks->value();
   int free = 0;
-  for (int i = 0; i < 20000; ++i) {
+  for (int i = 0; i < 5000; ++i) {
     std::vector<int> cell(d);
     for (int a = 0; a < d; ++a) {
-      // Every fifth coordinate lands exactly on a cell boundary, including the upper bound.
-      double x = u(rng);
-      if (i % 5 == 0) x = std::floor(x + 0.5);
+      const double x = i % 5 == 0 ? std::floor(u(rng) + 0.5) : u(rng);  // some on faces
       s[a] = x;
       cell[a] = std::min(static_cast<int>(std::floor(x)), extent - 1);
     }
     const bool native = w.field->is_free(cell);
-    ASSERT_EQ(w.checker->isValid(s.get()), native) << "point " << i;
-    EXPECT_EQ(w.checker->cell_of(s.get()), cell);
+    ASSERT_EQ(w.si->isValid(s.get()), native) << "point " << i;
     free += native;
   }
-  EXPECT_GT(free, 1000);  // both outcomes exercised
-  EXPECT_LT(free, 19000);
+  EXPECT_EQ(w.checks->value() - before, 5000u);
+  EXPECT_GT(free, 250);  // both outcomes exercised
+  EXPECT_LT(free, 4750);
 }
 
 INSTANTIATE_TEST_SUITE_P(Dims, CheckerAgreement, ::testing::Values(2, 4, 7, 10));
 
-TEST(GogWorld, PointsOutsideTheBoxAreInvalidAndChecksAreCounted) {
-  const GogWorld w = world_for(2, 20);
+TEST(GogSpace, PointsOutsideTheBoxAreInvalid) {
+  const GogSpace w = space_for(2, 20);
   ob::ScopedState<> s(w.space);
-  w.checker->reset_checks();
   s[0] = -0.001;
   s[1] = 1.0;
-  EXPECT_FALSE(w.checker->isValid(s.get()));
+  EXPECT_FALSE(w.si->isValid(s.get()));
   s[0] = 20.001;
-  EXPECT_FALSE(w.checker->isValid(s.get()));
+  EXPECT_FALSE(w.si->isValid(s.get()));
   s[0] = std::nan("");
-  EXPECT_FALSE(w.checker->isValid(s.get()));
-  EXPECT_EQ(w.checker->checks(), 3u);
-  const double x[2] = {1.0, 1.0};
-  (void)w.checker->point_is_free(x);  // the uncounted path
-  EXPECT_EQ(w.checker->checks(), 3u);
+  EXPECT_FALSE(w.si->isValid(s.get()));
 }
 
-TEST(GogWorld, MotionValidatorRejectsASegmentThroughABlockedCell) {
-  const GogWorld w = world_for(2, 100);
+TEST(GogSpace, MotionValidatorRejectsASegmentThroughABlockedCell) {
+  const GogSpace w = space_for(2, 100);
   // Find free - blocked - free along axis 0.
   const GogField& f = *w.field;
   for (int y = 0; y < 100; ++y)
@@ -113,91 +112,79 @@ TEST(GogWorld, MotionValidatorRejectsASegmentThroughABlockedCell) {
   FAIL() << "no free-blocked-free triple found";
 }
 
-// The exact validator against dense sampling: whatever it accepts has every sampled point
-// free, and whatever has a blocked sample it rejects.
+// The exact motion validator is the world's voxel walk (env/gog_world.hpp, tested against
+// dense sampling there): same verdicts, its cells counted, and a last valid state that is
+// valid and just short of the first contact.
 class ExactMotion : public ::testing::TestWithParam<int> {};
 
-TEST_P(ExactMotion, AgreesWithDenseSampling) {
+TEST_P(ExactMotion, IsTheWorldsWalkWithAValidLastState) {
   const int d = GetParam();
   const int extent = 24;
-  const GogWorld w = world_for(d, extent);
-  const GogMotionValidator exact(w.si, w.checker);
+  const GogSpace w = space_for(d, extent);
   std::mt19937_64 rng(99 + d);
   std::uniform_real_distribution<double> u(0.0, extent);
-  std::uniform_real_distribution<double> step(-3.0, 3.0);
-  int accepted = 0, rejected = 0, rejected_but_sampled_free = 0;
-  for (int n = 0; n < 4000; ++n) {
-    std::vector<double> a(d), b(d);
+  ob::ScopedState<> a(w.space), b(w.space), last(w.space);
+  int rejected = 0;
+  for (int n = 0; n < 2000; ++n) {
     for (int i = 0; i < d; ++i) {
       a[i] = u(rng);
-      // Short and long segments, some starting on cell faces or along exact diagonals.
-      b[i] = std::clamp(a[i] + (n % 3 == 0 ? step(rng) * 4 : step(rng)), 0.0, double(extent));
-      if (n % 7 == 0) a[i] = std::floor(a[i]);
-      if (n % 11 == 0) b[i] = a[i] + (i < 2 ? 1.0 : 0.0);
-      b[i] = std::clamp(b[i], 0.0, double(extent));
+      b[i] = std::clamp(a[i] + (u(rng) - extent / 2.0) / 3.0, 0.0, double(extent));
     }
-    if (!w.checker->point_is_free(a.data())) continue;
-    double at = 0;
-    const bool ok = exact.segment_free(a.data(), b.data(), &at);
-    bool sampled_ok = true;
-    std::vector<double> p(d);
-    for (int s = 0; s <= 2000 && sampled_ok; ++s) {
-      for (int i = 0; i < d; ++i) p[i] = s == 2000 ? b[i] : a[i] + (b[i] - a[i]) * s / 2000.0;
-      sampled_ok = w.checker->point_is_free(p.data());
-    }
-    if (ok) {
-      ++accepted;
-      ASSERT_TRUE(sampled_ok) << "exact validator accepted a segment with a blocked point: n=" << n
-                              << " a0=" << a[0] << " a1=" << a[1] << " b0=" << b[0]
-                              << " b1=" << b[1] << " p0=" << p[0] << " p1=" << p[1];
-    } else {
-      ++rejected;
-      // Rejected although every sample was free: the segment clips a blocked cell between two
-      // samples (they are up to ~0.02 apart) or touches one at an edge or corner. Rare.
-      if (sampled_ok) ++rejected_but_sampled_free;
-    }
-    if (!sampled_ok) {
-      ASSERT_FALSE(ok);
-    }
+    if (!w.si->isValid(a.get())) continue;
+    const auto pa = coords(a, d), pb = coords(b, d);
+    const env::GogSegmentWalk walk = env::gog_walk_segment(*w.field, pa.data(), pb.data());
+    const std::uint64_t before = w.checks->value();
+    ASSERT_EQ(w.si->checkMotion(a.get(), b.get()), walk.free) << "n=" << n;
+    EXPECT_EQ(w.checks->value() - before, walk.cells);
+    std::pair<ob::State*, double> last_valid(last.get(), -1.0);
+    ASSERT_EQ(w.si->getMotionValidator()->checkMotion(a.get(), b.get(), last_valid), walk.free);
+    if (walk.free) continue;
+    ++rejected;
+    EXPECT_LE(last_valid.second, walk.blocked_at);
+    EXPECT_GT(last_valid.second, walk.blocked_at - 1e-3);
+    EXPECT_TRUE(w.si->isValid(last.get())) << "n=" << n;
+    EXPECT_TRUE(w.si->checkMotion(a.get(), last.get())) << "n=" << n;
   }
-  EXPECT_GT(accepted, 100);
-  EXPECT_GT(rejected, 100);
-  EXPECT_LE(rejected_but_sampled_free, rejected / 20) << "the exact test rejects free segments";
+  EXPECT_GT(rejected, 50);
 }
 
 INSTANTIATE_TEST_SUITE_P(Dims, ExactMotion, ::testing::Values(2, 3, 5, 8));
 
-TEST(ExactMotion, ADiagonalThroughACornerOfABlockedCellIsRejected) {
-  // Free (x, y) and (x+1, y+1) with (x+1, y) blocked: the centre-to-centre diagonal only
-  // touches the blocked cell at one corner point. Point sampling accepts it (that point lies in
-  // the free cell by the floor rule); the exact validator, like the lattice, does not.
-  const GogWorld w = world_for(2, 100);
-  const GogField& f = *w.field;
-  const GogMotionValidator exact(w.si, w.checker);
-  for (int x = 0; x + 1 < 100; ++x)
-    for (int y = 0; y + 1 < 100; ++y) {
-      if (f.is_free(std::vector<int>{x, y}) && f.is_free(std::vector<int>{x + 1, y + 1}) &&
-          !f.is_free(std::vector<int>{x + 1, y})) {
-        const double p[2] = {x + 0.5, y + 0.5}, q[2] = {x + 1.5, y + 1.5};
-        double at = 0;
-        EXPECT_FALSE(exact.segment_free(p, q, &at));
-        EXPECT_NEAR(at, 0.5, 1e-9);
-        const double r[2] = {x + 0.5, y + 0.6}, s2[2] = {x + 1.4, y + 1.5};  // clear of it
-        EXPECT_TRUE(exact.segment_free(r, s2, &at));
-        return;
-      }
-    }
-  FAIL() << "no such corner in this field";
+// solve_with_ompl goes through the same adapter for any world: here the GOG field as a 3D
+// world, the path checked segment by segment with the world's exact test and by sampling.
+TEST(WorldSpace, OmplPlannersSolveTheGogWorldWithValidPaths) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  GogParams p;
+  p.seed = 7;
+  const auto field = std::make_shared<const GogField>(3, 30, p);
+  const env::GogWorld<3> w(field);
+  const auto s = adjust_to_free(*field, {0, 0, 0}, +1, "start");
+  const auto g = adjust_to_free(*field, {29, 29, 29}, -1, "goal");
+  const env::Vec<3> start{s[0] + 0.5, s[1] + 0.5, s[2] + 0.5};
+  const env::Vec<3> goal{g[0] + 0.5, g[1] + 0.5, g[2] + 0.5};
+  const auto r = solve_with_ompl(w, start, goal, "rrtconnect", 20.0, 5);
+  ASSERT_EQ(r.status, Status::solved);
+  EXPECT_EQ(r.path.front(), start);
+  EXPECT_EQ(r.path.back(), goal);
+  EXPECT_GT(r.counters.collision_checks, 0u);
+  for (std::size_t i = 1; i < r.path.size(); ++i) {
+    ASSERT_TRUE(w.segment_free(r.path[i - 1], r.path[i])) << "segment " << i;
+    for (int k = 0; k <= 100; ++k)
+      ASSERT_TRUE(
+          env::gog_point_free(*field, env::lerp<3>(r.path[i - 1], r.path[i], k / 100.0).data()));
+  }
 }
 
-TEST(GogWorld, BadResolutionIsAnInputError) {
+TEST(GogSpace, BadResolutionOrDimensionIsAnInputError) {
   auto f = std::make_shared<const GogField>(2, 10, GogParams{});
-  EXPECT_THROW(make_gog_world(f, 0.0), InputError);
-  EXPECT_THROW(make_gog_world(f, 1.5), InputError);
+  EXPECT_THROW(make_gog_space(f, 0.0), InputError);
+  EXPECT_THROW(make_gog_space(f, 1.5), InputError);
+  EXPECT_THROW(make_gog_space(std::make_shared<const GogField>(17, 2, GogParams{}), 0.1),
+               InputError);
 }
 
 // Solves the seed problem with the grid planner through OMPL and returns the path.
-og::PathGeometric solve_with_grid(const GogWorld& w, bool shortcut, GridReport* report) {
+og::PathGeometric solve_with_grid(const GogSpace& w, bool shortcut, GridReport* report) {
   const int d = w.field->dims();
   const auto s = adjust_to_free(*w.field, std::vector<int>(d, 0), +1, "start");
   const auto g = adjust_to_free(*w.field, std::vector<int>(d, w.field->extent() - 1), -1, "goal");
@@ -221,7 +208,7 @@ class GridPlannerInOmpl : public ::testing::TestWithParam<int> {};
 TEST_P(GridPlannerInOmpl, LatticePathIsTheSearchCostAndShortcutsOnlyShorten) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   const int d = GetParam();
-  const GogWorld w = world_for(d, d <= 4 ? 60 : 12);
+  const GogSpace w = space_for(d, d <= 4 ? 60 : 12);
   GridReport report;
   og::PathGeometric lattice = solve_with_grid(w, false, &report);
   ASSERT_EQ(report.status, search::Status::solved);
@@ -251,7 +238,7 @@ INSTANTIATE_TEST_SUITE_P(Dims, GridPlannerInOmpl, ::testing::Values(2, 3, 4, 6))
 // keeps its ends, and leaves every motion valid under the world's (exact) validator.
 TEST(PathTightening, ShortensALatticePathAndKeepsItValid) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
-  const GogWorld w = world_for(4, 40);
+  const GogSpace w = space_for(4, 40);
   og::PathGeometric path = solve_with_grid(w, false, nullptr);
   const og::PathGeometric before = path;
   const auto stats = tighten_path(w.si, path, ob::plannerNonTerminatingCondition(), 2.0);
@@ -269,7 +256,7 @@ TEST(PathTightening, ShortensALatticePathAndKeepsItValid) {
 }
 
 TEST(GridPlannerInOmpl, DeclaresItsParametersToOmpl) {
-  const GogWorld w = world_for(2, 20);
+  const GogSpace w = space_for(2, 20);
   GridAStarPlanner planner(w);
   auto& params = planner.params();
   for (const char* name : {"weight", "heuristic", "smoothing", "time_limit"})
@@ -283,7 +270,7 @@ TEST(GridPlannerInOmpl, DeclaresItsParametersToOmpl) {
 }
 
 TEST(GridPlannerInOmpl, StartInsideAnObstacleIsReportedAsInvalidStart) {
-  const GogWorld w = world_for(2, 100);
+  const GogSpace w = space_for(2, 100);
   std::vector<int> blocked;
   for (int x = 0; x < 100 && blocked.empty(); ++x)
     for (int y = 0; y < 100 && blocked.empty(); ++y)
@@ -339,7 +326,7 @@ TEST(OmplBenchmark, EveryRunIsRecordedValidatedAndScored) {
   o.planners = {"gridastar", "gridastar_lattice", "rrtconnect", "bitstar"};
   o.time_s = 0.3;
   o.runs = 2;
-  const auto r = run_ompl_benchmark(o, "", "");
+  const auto r = run_ompl_benchmark(o);
   ASSERT_EQ(r.rows.size(), 8u);
   ASSERT_GT(r.reference_quality, 0.0);
   int solved = 0;
@@ -372,7 +359,8 @@ TEST(OmplBenchmark, EveryRunIsRecordedValidatedAndScored) {
   EXPECT_DOUBLE_EQ(r.reference_quality, best);
   // The lattice path is the lattice optimum; the shortcut one is never longer.
   EXPECT_LE(r.rows[0].quality_final, r.rows[2].quality_final + 1e-12);
-  const std::string csv = to_csv(r);
+  const std::string csv = io::ompl_bench_csv(r);
+  EXPECT_NE(r.ompl_log.find("GridAStar"), std::string::npos);
   EXPECT_EQ(csv.rfind("planner,dims,run,seed,solved,time_first_s,length_first,quality_first,"
                       "time_best_s,quality_best,quality_final,",
                       0),

@@ -63,6 +63,14 @@ bad "eleven dimensions" --dims 11
 bad "bad resolution" --dims 2 --resolution 2
 bad "duplicate planner" --dims 2 --planners fmt,fmt
 bad "missing dims" --planners fmt
+# An output that cannot be written is refused before the (possibly long) run starts.
+start=$SECONDS
+"$bin" ompl --dims 2 --planners gridastar --time 30 --runs 100 --csv /nonexistent-dir/x.csv \
+  > /dev/null 2> "$dir/err.txt"
+rc=$?
+[[ $rc -eq 2 ]] || fail "unwritable --csv: exit $rc, expected 2"
+grep -q "does not exist" "$dir/err.txt" || fail "unwritable --csv: $(cat "$dir/err.txt")"
+((SECONDS - start < 20)) || fail "unwritable --csv was only noticed after the run"
 echo "ompl_cli: ok"
 
 # Progress: silent when stderr is not a terminal, one line per run when asked.

@@ -7,7 +7,7 @@
 //  - with `shortcut` on, OMPL's PathSimplifier then shortens the path in continuous space with
 //    the space information's own motion validator, which takes grid paths below the lattice's
 //    quality limit (sqrt(d/2) in open space);
-//  - the lattice's collision checks are added to the world's checker, so checks are counted
+//  - the lattice's collision checks are added to the world's counter, so checks are counted
 //    by one object for every planner.
 // Parameters (declared, so Benchmark logs them): weight (1 = A*), heuristic (lattice |
 // euclidean), smoothing (0/1: simplify + tighten), time_limit (s, 0 = none; the search also stops
@@ -17,13 +17,13 @@
 #include <ompl/base/Planner.h>
 
 #include "hpcplan/plan/grid_planner.hpp"
-#include "hpcplan/sampling/gog_world.hpp"
+#include "hpcplan/sampling/gog_space.hpp"
 
 namespace hpcplan::plan {
 
 class GridAStarPlanner : public ompl::base::Planner {
  public:
-  GridAStarPlanner(const sampling::GogWorld& world,
+  GridAStarPlanner(const sampling::GogSpace& space,
                    Connectivity connectivity = Connectivity::seed_pairs);
 
   ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition& ptc) override;
@@ -43,7 +43,7 @@ class GridAStarPlanner : public ompl::base::Planner {
   const GridReport& lastReport() const { return last_; }
 
  private:
-  sampling::GogWorld world_;
+  sampling::GogSpace space_;
   Connectivity connectivity_;
   double weight_ = 1.0;
   HeuristicKind heuristic_ = HeuristicKind::lattice;

@@ -12,8 +12,8 @@
 //    moment the quality reaches the midpoint
 //    between the first quality and the reference quality, the best final quality any run of
 //    any planner reached in this invocation;
-//  - final quality at the time limit; collision checks (the shared checker's count);
-//  - path validity, re-checked independently of OMPL (sampling/gog_world.hpp).
+//  - final quality at the time limit; collision checks (the shared world's count);
+//  - path validity, re-checked independently of OMPL (sampling/gog_space.hpp).
 // Quality is length / straight-line distance (seed 002 eq. 2).
 #include <cstdint>
 #include <string>
@@ -33,7 +33,7 @@ struct OmplBenchOptions {
   int runs = 10;
   std::uint64_t seed = 1;         // GOG field and OMPL's random generator
   double resolution_cells = 0.1;  // discrete motion checks: spacing, in cell widths
-  std::string motion = "exact";   // exact | discrete (sampling/gog_world.hpp)
+  std::string motion = "exact";   // exact | discrete (sampling/gog_space.hpp)
   bool shortcut = true;           // grid planner: shorten its path in continuous space
   double grid_weight = 1.0;       // grid planner: 1 = A*
   double memory_mb = 8192.0;      // Benchmark's per-run memory limit
@@ -61,6 +61,7 @@ struct OmplBenchResult {
   double straight_line = 0.0;
   double reference_quality = -1.0;  // best final quality of any run (-1 if none solved)
   std::vector<double> start, goal;  // the continuous start and goal (cell centres)
+  std::string ompl_log;             // Benchmark's own log, for ompl_benchmark_statistics.py
 };
 
 // Names accepted in OmplBenchOptions::planners.
@@ -72,11 +73,7 @@ unsigned fmt_samples(int dims);
 // Throws InputError for anything a user could have got wrong.
 void validate(const OmplBenchOptions& options);
 
-// Runs the benchmark. If log_path / csv_path are non-empty, writes the OMPL benchmark log and
-// the CSV, each through a temporary file renamed into place.
-OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& options, const std::string& log_path,
-                                   const std::string& csv_path);
-
-std::string to_csv(const OmplBenchResult& result);
+// Runs the benchmark (io/ompl_bench_csv.hpp formats its rows).
+OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& options);
 
 }  // namespace hpcplan::plan
