@@ -21,5 +21,6 @@ Action register_ompl_command(CLI::App& app);
 Action register_map3d_command(CLI::App& app);
 Action register_sphere2d_command(CLI::App& app);
 Action register_planners_command(CLI::App& app);
+Action register_sph_command(CLI::App& app);
 
 }  // namespace hpcplan::cli

@@ -9,6 +9,7 @@ PACKAGES=(
   libabsl-dev nlohmann-json3-dev libcli11-dev robin-map-dev
   libopenmpi-dev openmpi-bin procps
   libompl-dev ompl-demos python3-matplotlib libnanoflann-dev
+  python3-vtk9 ffmpeg
   slurm-wlm munge
 )
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The whole test suite: install, build, run every test; then the unit, CLI, OMPL and MPI suites
+# The whole test suite: install, build, run every test; then the unit, CLI, OMPL, MPI and fluid suites
 # again under AddressSanitizer + UndefinedBehaviorSanitizer, and the threaded tests (stop
 # token, cancellation, planners sharing a world) under ThreadSanitizer.
 set -euo pipefail
@@ -21,7 +21,7 @@ bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 echo "== tests (ASan + UBSan)"
 # (The MPI suites run without leak checks: tests/mpi/CMakeLists.txt says why.)
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-(cd build-asan && ctest_run --timeout 900 -L "unit|cli|ompl|mpi")
+(cd build-asan && ctest_run --timeout 900 -L "unit|cli|ompl|mpi|sph")
 
 echo "== build (ThreadSanitizer: threaded tests)"
 bash scripts/build.sh build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHPCPLAN_SANITIZE=thread \

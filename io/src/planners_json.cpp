@@ -59,9 +59,15 @@ std::string to_summary(const plan::PlannerRegistry& registry, std::string_view w
   for (const plan::PlannerSpec& s : registry.planners()) {
     if (!shown(s, world)) continue;
     std::string worlds, params;
-    for (const auto& w : s.worlds) worlds += (worlds.empty() ? "" : ",") + w;
-    for (const auto& p : s.params)
-      params += (params.empty() ? "" : " ") + registry.param(p).option();
+    // Appended piecewise: `literal + string` temporaries trip GCC 12's -Wrestrict (bug 105329).
+    for (const auto& w : s.worlds) {
+      if (!worlds.empty()) worlds += ',';
+      worlds += w;
+    }
+    for (const auto& p : s.params) {
+      if (!params.empty()) params += ' ';
+      params += registry.param(p).option();
+    }
     std::snprintf(line, sizeof line, "%-24s %-16s %-15s %s\n", s.name.c_str(), s.family.c_str(),
                   worlds.c_str(), s.help.c_str());
     out += line;

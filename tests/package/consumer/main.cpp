@@ -1,5 +1,5 @@
-// Plans on a box map, runs lattice A* on the GOG field, and links the MPI layer: the three
-// things a downstream user of the installed package is most likely to do first.
+// Plans on a box map, runs lattice A* on the GOG field, links the MPI layer and steps the fluid:
+// the things a downstream user of the installed package is most likely to do first.
 #include <cstdio>
 
 #include "hpcplan/dist/grid_planner_mpi.hpp"
@@ -7,6 +7,8 @@
 #include "hpcplan/mpi/communicator.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
 #include "hpcplan/plan/world_planner.hpp"
+#include "hpcplan/sph/fluid.hpp"
+#include "hpcplan/sph/presets.hpp"
 
 int main() {
   using namespace hpcplan;
@@ -22,8 +24,14 @@ int main() {
   problem.extent = 30;
   const GridReport g = solve_grid(problem, {});
 
-  std::printf("box map: %s %.3f; lattice: %s %.3f; launched by MPI: %d\n",
+  sph::FluidOptions fo;
+  fo.particles = 200;
+  sph::Fluid fluid(sph::make_fluid(fo), sph::make_cpu_backend());
+  const bool fluid_ok = fluid.advance_frame().problem.empty();
+
+  std::printf("box map: %s %.3f; lattice: %s %.3f; launched by MPI: %d; fluid: %s\n",
               std::string(to_string(p.status)).c_str(), p.cost,
-              std::string(to_string(g.status)).c_str(), g.cost, mpi::launched_by_mpi() ? 1 : 0);
-  return p.status == Status::solved && g.status == Status::solved ? 0 : 1;
+              std::string(to_string(g.status)).c_str(), g.cost, mpi::launched_by_mpi() ? 1 : 0,
+              fluid_ok ? "ok" : "unsound");
+  return p.status == Status::solved && g.status == Status::solved && fluid_ok ? 0 : 1;
 }

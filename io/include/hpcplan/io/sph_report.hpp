@@ -1,0 +1,35 @@
+#pragma once
+// A fluid run (hpcplan sph) as JSON (the keys documented in README.md) and as a readable
+// summary, and the dam break's surge front as T,Z rows.
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "hpcplan/sph/diagnostics.hpp"
+#include "hpcplan/sph/presets.hpp"
+#include "hpcplan/sph/run.hpp"
+
+namespace hpcplan::io {
+
+struct SphRun {
+  sph::FluidOptions options;
+  int threads = 1;
+  std::string backend;
+  sph::Box3 domain;
+  std::size_t wall_particles = 0;
+  sph::FluidParams params;
+  sph::RunReport report;
+  sph::FluidSummary summary;  // after the last frame
+  double seconds = 0.0;       // the whole run, set-up excluded
+};
+
+nlohmann::json to_json(const SphRun& run);
+std::string to_summary(const SphRun& run);
+
+// T = t sqrt(2 g / a), Z = x / a, one row per sample.
+std::string front_csv(const std::vector<std::pair<double, double>>& t_z);
+
+}  // namespace hpcplan::io

@@ -1,0 +1,149 @@
+#include "hpcplan/io/vtk_fluid.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <string_view>
+
+#include "hpcplan/core/atomic_file.hpp"
+
+namespace hpcplan::io {
+
+namespace {
+
+// Appended raw data: each array is a UInt64 byte count followed by its bytes; a DataArray
+// names its block by the block's offset from the start of the data.
+class Appended {
+ public:
+  template <class T>
+  std::uint64_t add(const std::vector<T>& values) {
+    const std::uint64_t offset = data_.size();
+    const std::uint64_t bytes = values.size() * sizeof(T);
+    append(&bytes, sizeof bytes);
+    append(values.data(), bytes);
+    return offset;
+  }
+  const std::string& bytes() const { return data_; }
+
+ private:
+  void append(const void* p, std::size_t n) { data_.append(static_cast<const char*>(p), n); }
+  std::string data_;
+};
+
+std::string data_array(const char* type, const char* name, int components, std::uint64_t offset) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "<DataArray type=\"%s\"%s%s%s NumberOfComponents=\"%d\" format=\"appended\" "
+                "offset=\"%llu\"/>\n",
+                type, name[0] ? " Name=\"" : "", name, name[0] ? "\"" : "", components,
+                static_cast<unsigned long long>(offset));
+  return buf;
+}
+
+std::string unstructured_grid(std::size_t points, std::size_t cells, const std::string& point_data,
+                              const std::string& arrays, const Appended& data) {
+  std::string s =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"" +
+      std::to_string(points) + "\" NumberOfCells=\"" + std::to_string(cells) + "\">\n" +
+      point_data + arrays + "</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
+  s += data.bytes();
+  s += "\n</AppendedData>\n</VTKFile>\n";
+  return s;
+}
+
+std::string cells_xml(const Appended&, std::uint64_t conn, std::uint64_t offs,
+                      std::uint64_t types) {
+  return "<Cells>\n" + data_array("Int64", "connectivity", 1, conn) +
+         data_array("Int64", "offsets", 1, offs) + data_array("UInt8", "types", 1, types) +
+         "</Cells>\n";
+}
+
+}  // namespace
+
+std::string vtu_particles(const sph::FluidState& s) {
+  const sph::Particles& p = s.particles;
+  std::vector<double> points, velocity, density, pressure;
+  std::vector<std::int64_t> connectivity, offsets, id;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.wall[i]) continue;
+    const auto n = static_cast<std::int64_t>(density.size());
+    points.insert(points.end(), {p.x[i], p.y[i], p.z[i]});
+    velocity.insert(velocity.end(), {p.vx[i], p.vy[i], p.vz[i]});
+    density.push_back(p.rho[i]);
+    pressure.push_back(p.p[i]);
+    id.push_back(p.id[i]);
+    connectivity.push_back(n);
+    offsets.push_back(n + 1);
+  }
+  const std::vector<std::uint8_t> types(density.size(), 1);  // VTK_VERTEX
+  Appended data;
+  const std::string point_data = "<PointData Scalars=\"density\" Vectors=\"velocity\">\n" +
+                                 data_array("Float64", "velocity", 3, data.add(velocity)) +
+                                 data_array("Float64", "density", 1, data.add(density)) +
+                                 data_array("Float64", "pressure", 1, data.add(pressure)) +
+                                 data_array("Int64", "id", 1, data.add(id)) + "</PointData>\n";
+  const std::uint64_t pts = data.add(points);
+  const std::uint64_t conn = data.add(connectivity), offs = data.add(offsets),
+                      typ = data.add(types);
+  const std::string arrays = "<Points>\n" + data_array("Float64", "", 3, pts) + "</Points>\n" +
+                             cells_xml(data, conn, offs, typ);
+  return unstructured_grid(density.size(), density.size(), point_data, arrays, data);
+}
+
+std::string vtu_boxes(const std::vector<sph::MovingBox>& boxes) {
+  std::vector<double> points;
+  std::vector<std::int64_t> connectivity, offsets;
+  std::vector<double> speed;
+  for (const sph::MovingBox& b : boxes) {
+    const auto& lo = b.box.lo;
+    const auto& hi = b.box.hi;
+    // VTK_HEXAHEDRON's corner order: the bottom face counter-clockwise, then the top face.
+    const double corners[8][3] = {
+        {lo[0], lo[1], lo[2]}, {hi[0], lo[1], lo[2]}, {hi[0], hi[1], lo[2]}, {lo[0], hi[1], lo[2]},
+        {lo[0], lo[1], hi[2]}, {hi[0], lo[1], hi[2]}, {hi[0], hi[1], hi[2]}, {lo[0], hi[1], hi[2]}};
+    const auto first = static_cast<std::int64_t>(points.size() / 3);
+    for (const auto& c : corners) points.insert(points.end(), {c[0], c[1], c[2]});
+    for (int k = 0; k < 8; ++k) connectivity.push_back(first + k);
+    offsets.push_back(first + 8);
+    speed.push_back(sph::norm(b.velocity));
+  }
+  const std::vector<std::uint8_t> types(boxes.size(), 12);  // VTK_HEXAHEDRON
+  Appended data;
+  const std::string cell_data = "<CellData Scalars=\"speed\">\n" +
+                                data_array("Float64", "speed", 1, data.add(speed)) +
+                                "</CellData>\n";
+  const std::uint64_t pts = data.add(points);
+  const std::uint64_t conn = data.add(connectivity), offs = data.add(offsets),
+                      typ = data.add(types);
+  const std::string arrays = "<Points>\n" + data_array("Float64", "", 3, pts) + "</Points>\n" +
+                             cells_xml(data, conn, offs, typ);
+  return unstructured_grid(points.size() / 3, boxes.size(), cell_data, arrays, data);
+}
+
+VtkSeries::VtkSeries(std::string dir) : dir_(std::move(dir)) {
+  if (!dir_.empty() && dir_.back() != '/') dir_ += '/';
+}
+
+void VtkSeries::write(std::uint64_t frame, const sph::FluidState& state) {
+  char tag[32];
+  std::snprintf(tag, sizeof tag, "%06llu", static_cast<unsigned long long>(frame));
+  write_file_atomically(dir_ + "fluid_" + tag + ".vtu", vtu_particles(state));
+  write_file_atomically(dir_ + "boxes_" + tag + ".vtu", vtu_boxes(state.boxes));
+  entries_.emplace_back(state.time, tag);
+  std::string pvd =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" "
+      "byte_order=\"LittleEndian\">\n<Collection>\n";
+  for (const auto& [time, t] : entries_) {
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "<DataSet timestep=\"%.9g\" part=\"0\" file=\"fluid_%s.vtu\"/>\n"
+                  "<DataSet timestep=\"%.9g\" part=\"1\" file=\"boxes_%s.vtu\"/>\n",
+                  time, t.c_str(), time, t.c_str());
+    pvd += line;
+  }
+  pvd += "</Collection>\n</VTKFile>\n";
+  write_file_atomically(dir_ + "fluid.pvd", pvd);
+}
+
+}  // namespace hpcplan::io

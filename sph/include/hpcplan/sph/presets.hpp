@@ -1,0 +1,54 @@
+#pragma once
+// Ready-made fluids.
+//
+// seed (seed 000's parameters): a cube of side L = 5 (N / 1500)^(1/3), H = 0.15, mass 0.05,
+//   rest density 1000, gas constant 2000, viscosity 0.1, Müller's kernels. With these numbers a
+//   particle's own density is ~23 and packed neighbourhoods reach ~70-175, far below the rest
+//   density, so the clamped EOS never produces pressure: the fluid is a viscous particle gas.
+//   Its regime (a dense moving field filling the box) is reproduced as the published code
+//   produces it, with the physics written correctly:
+//     - particles start uniformly at random in the free part of the box (seeded), each with
+//       the published agitation kick: +-2.5 m/s on each horizontal axis, 0..3 m/s up;
+//     - gravity is the published code's effective acceleration, 0.02 m/s^2 down (it adds m g
+//       as a force and divides by the density; here it is an acceleration, stated as such);
+//     - walls and box faces keep half the normal velocity, reversed.
+//   Scenarios: particles; static (6 boxes, sides 0.1-0.2 L, seeded, not overlapping);
+//   dynamic (the same boxes at 0.5-1.0 wu/s in seeded directions, reflected off the walls).
+// water (weakly-compressible SPH that passes validation): Wendland C2 with h = 1.3 dx, mass
+//   rho0 dx^3, Tait EOS with c0 = 10 sqrt(2 g H) (H the fluid's height; ten times the largest
+//   free-fall speed), Monaghan viscosity alpha = 0.1, free-slip walls of three layers of
+//   particles carrying extrapolated pressures (Adami et al. 2012), hydrostatic initial density.
+//   Scenarios: tank (water 0.5 m deep in a 1 m x 1 m tank) and dambreak (Martin and Moyce's
+//   column: width a = 2.25 in, height 2a, in a tank 6a long, a/4 wide).
+#include <cstdint>
+#include <string_view>
+
+#include "hpcplan/sph/fluid_state.hpp"
+
+namespace hpcplan::sph {
+
+enum class Scenario { particles, static_boxes, dynamic_boxes, dambreak, tank };
+
+Preset parse_preset(std::string_view name);      // InputError if unknown
+Scenario parse_scenario(std::string_view name);  // InputError if unknown
+std::string_view to_string(Scenario s);
+
+struct FluidOptions {
+  Preset preset = Preset::seed;
+  Scenario scenario = Scenario::particles;
+  std::size_t particles = 1500;  // fluid particles asked for (water rounds to its lattice)
+  std::uint64_t seed = 1;
+};
+
+// Checks the options (InputError: no particles, a scenario the preset does not support).
+void validate(const FluidOptions& options);
+
+// Bytes the fluid will hold (particles, walls, neighbour grid), without building it.
+std::uint64_t estimated_bytes(const FluidOptions& options);
+
+FluidState make_fluid(const FluidOptions& options);
+
+// The dam break's column width a, for Z = x / a and T = t sqrt(2 g / a).
+inline constexpr double kDamBreakColumn = 0.05715;
+
+}  // namespace hpcplan::sph

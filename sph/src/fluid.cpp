@@ -1,0 +1,62 @@
+#include "hpcplan/sph/fluid.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "hpcplan/core/stopwatch.hpp"
+
+namespace hpcplan::sph {
+
+std::string_view to_string(Preset p) {
+  return p == Preset::seed ? "seed" : "water";
+}
+
+Fluid::Fluid(FluidState initial, std::unique_ptr<StepBackend> backend)
+    : state_(std::move(initial)), backend_(std::move(backend)) {}
+
+FrameReport Fluid::advance_frame(const std::function<void(const FluidState&)>& after_substep) {
+  FrameReport report;
+  Stopwatch clock;
+  ++frame_;
+  // The frame ends at an exact multiple of frame_dt, so that rounding never adds a sliver.
+  const double end = static_cast<double>(frame_) * state_.params.frame_dt;
+  while (state_.time < end) {
+    double dt = backend_->stable_dt(state_);
+    const double left = end - state_.time;
+    // Split the rest of the frame evenly rather than leave a tiny last substep.
+    const double pieces = std::ceil(left / dt - 1e-9);
+    dt = pieces <= 1.0 ? left : left / pieces;
+    if (!(dt > 0.0) || !std::isfinite(dt)) {
+      report.problem = "the stable substep is not a positive number";
+      break;
+    }
+    report.grid_ms += backend_->substep(state_, dt).grid_ms;
+    if (pieces <= 1.0) state_.time = end;
+    ++report.substeps;
+    if (after_substep) after_substep(state_);
+  }
+  report.ms = clock.milliseconds();
+  if (report.problem.empty()) report.problem = first_problem(state_);
+  return report;
+}
+
+std::string first_problem(const FluidState& s) {
+  const Particles& p = s.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.wall[i]) continue;
+    const Vec3 x = p.position(i), v = p.velocity(i);
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(x[k])) return "non-finite position of particle " + std::to_string(p.id[i]);
+      if (!std::isfinite(v[k])) return "non-finite velocity of particle " + std::to_string(p.id[i]);
+    }
+    if (!std::isfinite(p.rho[i]) || !std::isfinite(p.p[i]))
+      return "non-finite density or pressure of particle " + std::to_string(p.id[i]);
+    if (!s.domain.contains(x)) return "particle " + std::to_string(p.id[i]) + " left the domain";
+    for (const MovingBox& b : s.boxes)
+      if (b.box.interior_contains(x))
+        return "particle " + std::to_string(p.id[i]) + " is inside an obstacle box";
+  }
+  return "";
+}
+
+}  // namespace hpcplan::sph

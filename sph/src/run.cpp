@@ -1,0 +1,26 @@
+#include "hpcplan/sph/run.hpp"
+
+namespace hpcplan::sph {
+
+RunReport run_frames(Fluid& fluid, std::uint64_t frames,
+                     const std::function<void(std::uint64_t, const FluidState&)>& after_frame,
+                     const std::function<void(const FluidState&)>& after_substep) {
+  RunReport r;
+  for (std::uint64_t f = 1; f <= frames; ++f) {
+    const FrameReport frame = fluid.advance_frame(after_substep);
+    r.substeps += static_cast<std::uint64_t>(frame.substeps);
+    r.frame_ms.push_back(frame.ms);
+    r.grid_ms.push_back(frame.grid_ms);
+    r.frames = f;
+    if (after_frame) after_frame(f, fluid.state());
+    if (!frame.problem.empty()) {
+      r.stable = false;
+      r.unstable_frame = f;
+      r.problem = frame.problem;
+      break;
+    }
+  }
+  return r;
+}
+
+}  // namespace hpcplan::sph

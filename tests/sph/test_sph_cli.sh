@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# hpcplan sph end to end: the JSON report, VTK output read back by VTK's own XML readers
+# (Debian's python3-vtk9, as ParaView reads it), the dam break's front CSV, bad input.
+set -uo pipefail
+bin=$1
+# Debian's interpreter, which has python3-vtk9 (a python3 earlier in PATH may not).
+py=/usr/bin/python3
+[[ -x $py ]] || py=python3
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+fail() { echo "sph_cli: FAIL: $*" >&2; exit 1; }
+
+"$bin" sph --preset seed --scenario dynamic --particles 800 --frames 12 --seed 4 --threads 2 \
+  --vtk "$dir/vtk" --every 5 --json --output "$dir/run.json" > "$dir/out.json" ||
+  fail "seed run failed"
+cmp -s "$dir/out.json" "$dir/run.json" || fail "--output differs from stdout"
+python3 - "$dir/out.json" <<'PY' || exit 1
+import json, sys
+j = json.load(open(sys.argv[1]))
+keys = ["status", "preset", "scenario", "particles", "frames", "substeps", "box",
+        "ms_per_frame_median", "ms_per_frame_max", "particle_steps_per_s", "neighbours_mean",
+        "neighbours_max", "max_density_error", "kinetic_energy", "threads", "seed", "backend"]
+missing = [k for k in keys if k not in j]
+assert not missing, f"missing keys {missing}"
+assert j["status"] == "ok" and j["preset"] == "seed" and j["scenario"] == "dynamic", j
+assert j["particles"] == 800 and j["frames"] == 12 and j["threads"] == 2 and j["seed"] == 4, j
+assert j["substeps"] >= 12 and j["backend"] == "cpu", j
+assert j["particle_steps_per_s"] > 0 and j["kinetic_energy"] > 0, j
+L = 5 * (800 / 1500) ** (1 / 3)
+assert abs(j["box"][1][0] - L) < 1e-9, j["box"]
+print("sph_cli: json ok")
+PY
+
+# VTK: frames 0, 5, 10 and the last (12); each read back by VTK's readers.
+"$py" - "$dir/vtk" <<'PY' || exit 1
+import os, sys, xml.etree.ElementTree as ET
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+d = sys.argv[1]
+pvd = ET.parse(os.path.join(d, "fluid.pvd")).getroot()
+sets = pvd.find("Collection").findall("DataSet")
+files = [s.get("file") for s in sets]
+assert files == ["fluid_000000.vtu", "boxes_000000.vtu", "fluid_000005.vtu", "boxes_000005.vtu",
+                 "fluid_000010.vtu", "boxes_000010.vtu", "fluid_000012.vtu", "boxes_000012.vtu"], files
+times = [float(s.get("timestep")) for s in sets[::2]]
+assert all(abs(t - e) < 1e-9 for t, e in zip(times, [0.0, 0.1, 0.2, 0.24])), times
+for name in files:
+    r = vtk.vtkXMLUnstructuredGridReader()
+    r.SetFileName(os.path.join(d, name))
+    r.Update()
+    g = r.GetOutput()
+    if name.startswith("fluid"):
+        assert g.GetNumberOfPoints() == 800 and g.GetNumberOfCells() == 800, name
+        pd = g.GetPointData()
+        for a, comps in (("velocity", 3), ("density", 1), ("pressure", 1), ("id", 1)):
+            arr = pd.GetArray(a)
+            assert arr is not None and arr.GetNumberOfComponents() == comps, (name, a)
+        pts = vtk_to_numpy(g.GetPoints().GetData())
+        L = 5 * (800 / 1500) ** (1 / 3)
+        assert pts.min() >= 0 and pts.max() <= L, (name, pts.min(), pts.max())
+        rho = vtk_to_numpy(pd.GetArray("density"))
+        assert (rho > 0).all() or name == "fluid_000000.vtu", name
+        ids = sorted(vtk_to_numpy(pd.GetArray("id")).tolist())
+        assert ids == list(range(800)), name
+    else:
+        assert g.GetNumberOfCells() == 6 and g.GetNumberOfPoints() == 48, name
+        assert g.GetCellType(0) == vtk.VTK_HEXAHEDRON, name
+        b = g.GetBounds()
+        assert b[1] > b[0] and b[3] > b[2] and b[5] > b[4], b
+print("sph_cli: vtk ok")
+PY
+ls "$dir/vtk" | grep -q tmp && fail "a temporary file was left behind"
+
+# The dam break's front.
+"$bin" sph --preset water --scenario dambreak --particles 500 --frames 3 --front-csv "$dir/front.csv" \
+  > "$dir/water.txt" || fail "dam break failed"
+grep -q "status         ok" "$dir/water.txt" || fail "dam break summary: $(cat "$dir/water.txt")"
+head -1 "$dir/front.csv" | grep -qx "T,Z" || fail "front CSV header"
+[[ $(wc -l < "$dir/front.csv") -gt 20 ]] || fail "front CSV too short"
+echo "sph_cli: front ok"
+
+# Bad input: exit 2, one line on stderr, nothing written.
+bad() {
+  local what=$1; shift
+  rm -rf "$dir/bad.json" "$dir/badvtk"
+  "$bin" sph "$@" --output "$dir/bad.json" > /dev/null 2> "$dir/err.txt"
+  local rc=$?
+  [[ $rc -eq 2 ]] || fail "$what: exit $rc, expected 2 ($(cat "$dir/err.txt"))"
+  [[ $(wc -l < "$dir/err.txt") -eq 1 ]] || fail "$what: stderr is not one line: $(cat "$dir/err.txt")"
+  [[ ! -e $dir/bad.json && ! -e $dir/badvtk ]] || fail "$what: wrote output on bad input"
+}
+bad "no particles" --particles 0
+bad "no frames" --frames 0
+bad "unknown preset" --preset lava
+bad "unknown scenario" --scenario ocean
+bad "dam break with the seed preset" --preset seed --scenario dambreak
+bad "water with boxes" --preset water --scenario static
+bad "over the memory budget" --particles 100000000 --memory-mb 64 --vtk "$dir/badvtk"
+bad "front without a dam break" --front-csv "$dir/f.csv"
+bad "unwritable vtk" --vtk /nonexistent-dir/vtk
+bad "unwritable front" --preset water --front-csv /nonexistent-dir/f.csv
+bad "negative threads" --threads -1
+echo "sph_cli: ok"
