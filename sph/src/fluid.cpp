@@ -40,23 +40,36 @@ FrameReport Fluid::advance_frame(const std::function<void(const FluidState&)>& a
   return report;
 }
 
-std::string first_problem(const FluidState& s) {
+namespace {
+
+// What is wrong with fluid particle i, or empty.
+std::string problem_of(const FluidState& s, std::size_t i) {
   const Particles& p = s.particles;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.wall[i]) continue;
-    const Vec3 x = p.position(i), v = p.velocity(i);
-    for (int k = 0; k < 3; ++k) {
-      if (!std::isfinite(x[k])) return "non-finite position of particle " + std::to_string(p.id[i]);
-      if (!std::isfinite(v[k])) return "non-finite velocity of particle " + std::to_string(p.id[i]);
-    }
-    if (!std::isfinite(p.rho[i]) || !std::isfinite(p.p[i]))
-      return "non-finite density or pressure of particle " + std::to_string(p.id[i]);
-    if (!s.domain.contains(x)) return "particle " + std::to_string(p.id[i]) + " left the domain";
-    for (const MovingBox& b : s.boxes)
-      if (b.box.interior_contains(x))
-        return "particle " + std::to_string(p.id[i]) + " is inside an obstacle box";
+  const Vec3 x = p.position(i), v = p.velocity(i);
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(x[k])) return "non-finite position of particle " + std::to_string(p.id[i]);
+    if (!std::isfinite(v[k])) return "non-finite velocity of particle " + std::to_string(p.id[i]);
   }
+  if (!std::isfinite(p.rho[i]) || !std::isfinite(p.p[i]))
+    return "non-finite density or pressure of particle " + std::to_string(p.id[i]);
+  if (!s.domain.contains(x)) return "particle " + std::to_string(p.id[i]) + " left the domain";
+  for (const MovingBox& b : s.boxes)
+    if (b.box.interior_contains(x))
+      return "particle " + std::to_string(p.id[i]) + " is inside an obstacle box";
   return "";
+}
+
+}  // namespace
+
+std::string first_problem(const FluidState& s) {
+  // The scan runs in parallel; the lowest bad index is reported, whatever the thread count.
+  const Particles& p = s.particles;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
+  std::ptrdiff_t first = n;
+#pragma omp parallel for schedule(static) reduction(min : first)
+  for (std::ptrdiff_t i = 0; i < n; ++i)
+    if (!p.wall[i] && i < first && !problem_of(s, static_cast<std::size_t>(i)).empty()) first = i;
+  return first < n ? problem_of(s, static_cast<std::size_t>(first)) : "";
 }
 
 }  // namespace hpcplan::sph

@@ -6,6 +6,8 @@
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/splitmix64.hpp"
+#include "hpcplan/sph/neighbour_lists.hpp"
+#include "hpcplan/sph/step_backend.hpp"
 
 namespace hpcplan::sph {
 
@@ -231,9 +233,10 @@ std::uint64_t estimated_bytes(const FluidOptions& o) {
     particles = ex * ey * ez;  // fluid and walls together never exceed the padded box
     cells = std::ceil(ex / 2.6) * std::ceil(ey / 2.6) * std::ceil(ez / 2.6);
   }
-  // Particles twice over (the reordering's scratch copy) plus the grid.
+  // Particles twice over (the reordering's scratch copy), the grid, the neighbour lists.
   return static_cast<std::uint64_t>(particles * (2.0 * Particles::kBytesPerParticle + 16.0) +
-                                    4.0 * cells);
+                                    8.0 * cells) +
+         NeighbourLists::bytes_for(static_cast<std::uint64_t>(particles), list_capacity(o.preset));
 }
 
 FluidState make_fluid(const FluidOptions& o) {

@@ -71,6 +71,13 @@ print("sph_cli: vtk ok")
 PY
 ls "$dir/vtk" | grep -q tmp && fail "a temporary file was left behind"
 
+# The headless render: a PNG per written frame and an animation (MP4 with ffmpeg, else GIF).
+"$py" "$(dirname "$0")/../../scripts/render_sph.py" "$dir/vtk" --out "$dir/render" > "$dir/render.txt" ||
+  fail "render_sph.py failed"
+[[ $(ls "$dir"/render_*.png | wc -l) -eq 4 ]] || fail "render: expected 4 PNG frames"
+[[ -s $dir/render.mp4 || -s $dir/render.gif ]] || fail "render: no animation"
+echo "sph_cli: render ok"
+
 # The dam break's front.
 "$bin" sph --preset water --scenario dambreak --particles 500 --frames 3 --front-csv "$dir/front.csv" \
   > "$dir/water.txt" || fail "dam break failed"

@@ -18,14 +18,6 @@
 #include <type_traits>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-// Local to this header (undefined at its end).
-#define HPCPLAN_OMP_PARALLEL_FOR _Pragma("omp parallel for schedule(static)")
-#else
-#define HPCPLAN_OMP_PARALLEL_FOR
-#endif
-
 namespace hpcplan {
 
 template <int D>
@@ -166,23 +158,11 @@ class CsrBuckets {
     start_[0] = 0;
   }
 
-  // Items 0 .. keys.size()-1, item i in bucket keys[i] (< cells); stable. The passes over the
-  // buckets run in parallel in code compiled with OpenMP (the fluid's neighbour grid rebuilds
-  // this every substep over far more cells than particles); the passes over the items, a
-  // histogram and a stable scatter, stay serial.
+  // Items 0 .. keys.size()-1, item i in bucket keys[i] (< cells): for callers that compute
+  // the keys once (in parallel) and rebuild every step (the fluid's neighbour grid); no array
+  // is reallocated once it has grown.
   void build_from_keys(std::size_t cells, std::span<const std::uint32_t> keys) {
-    start_.resize(cells + 1);
-    cursor_.resize(cells);
-    const std::ptrdiff_t nc = static_cast<std::ptrdiff_t>(cells);
-    HPCPLAN_OMP_PARALLEL_FOR
-    for (std::ptrdiff_t c = 0; c <= nc; ++c) start_[c] = 0;
-    for (const std::uint32_t k : keys) ++start_[k + 1];
-    exclusive_scan_in_place(start_);  // start_[c + 1] becomes the end of bucket c
-    HPCPLAN_OMP_PARALLEL_FOR
-    for (std::ptrdiff_t c = 0; c < nc; ++c) cursor_[c] = start_[c];
-    items_.resize(keys.size());
-    for (std::size_t i = 0; i < keys.size(); ++i)
-      items_[cursor_[keys[i]]++] = static_cast<std::uint32_t>(i);
+    build(cells, keys.size(), [&](std::size_t i, auto&& add) { add(keys[i]); });
   }
 
   std::span<const std::uint32_t> items_in(std::size_t cell) const {
@@ -198,40 +178,8 @@ class CsrBuckets {
   std::size_t entries() const { return items_.size(); }
 
  private:
-  // counts[0] = 0 and counts[c + 1] = size of bucket c, in; counts[c] = start of bucket c, out.
-  // Blocked: each thread sums a block, the block totals are scanned, each block is scanned.
-  static void exclusive_scan_in_place(std::vector<std::uint32_t>& counts) {
-    const std::size_t n = counts.size();
-#ifdef _OPENMP
-    if (n > (1u << 16)) {
-      std::vector<std::uint32_t> block_sum;
-      _Pragma("omp parallel") {
-        const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
-        const std::size_t threads = static_cast<std::size_t>(omp_get_num_threads());
-        _Pragma("omp single") block_sum.assign(threads + 1, 0);
-        const std::size_t lo = n * t / threads, hi = n * (t + 1) / threads;
-        std::uint32_t sum = 0;
-        for (std::size_t c = lo; c < hi; ++c) sum += counts[c];
-        block_sum[t + 1] = sum;
-        _Pragma("omp barrier") _Pragma("omp single") for (std::size_t b = 0; b < threads; ++b)
-            block_sum[b + 1] += block_sum[b];
-        std::uint32_t run = block_sum[t];
-        for (std::size_t c = lo; c < hi; ++c) {
-          run += counts[c];
-          counts[c] = run;
-        }
-      }
-      return;
-    }
-#endif
-    for (std::size_t c = 1; c < n; ++c) counts[c] += counts[c - 1];
-  }
-
   std::vector<std::uint32_t> start_;  // bucket c holds items_[start_[c] .. start_[c + 1])
   std::vector<std::uint32_t> items_;
-  std::vector<std::uint32_t> cursor_;  // build_from_keys' write positions
 };
 
 }  // namespace hpcplan
-
-#undef HPCPLAN_OMP_PARALLEL_FOR

@@ -84,4 +84,16 @@ class NeighbourGrid {
   std::vector<std::uint8_t> marked_;
 };
 
+// The grid read as neighbour lists are (NeighbourLists' for_each), for passes written once
+// over either: the seed's sparse gas has too few neighbours for lists to pay.
+struct GridNeighbours {
+  template <class Fn>
+  void for_each(std::size_t i, const NeighbourGrid& grid, const Particles& p, Fn&& fn) const {
+    grid.for_each_within(p.x[i], p.y[i], p.z[i], p,
+                         [&](std::uint32_t j, double dx, double dy, double dz, double r2) {
+                           if (j != static_cast<std::uint32_t>(i)) fn(j, dx, dy, dz, r2);
+                         });
+  }
+};
+
 }  // namespace hpcplan::sph

@@ -30,4 +30,7 @@ class StepBackend {
 // entries, so the result does not depend on the number of threads.
 std::unique_ptr<StepBackend> make_cpu_backend();
 
+// The CPU backend's neighbour-list room per particle, for memory estimates.
+std::uint32_t list_capacity(Preset preset);
+
 }  // namespace hpcplan::sph
