@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The water preset against experiment, at three resolutions:
 #   dam break: surge front Z = x/a against T = t sqrt(2g/a) beside Martin and Moyce (1952),
-#              12, 20 and 30 particles across the column (864, 4,000 and 13,500 particles),
+#              12, 20 and 32 particles across the column (864, 4,000 and 16,384 particles),
 #              the error at each experimental point with 0.8 <= T <= 3;
 #   tank:      pressure at mid-depth and the largest density error after settling, at
 #              4,000, 32,000 and 108,000 particles.
@@ -72,7 +72,9 @@ try:
     ax.plot([t for t, _ in exp], [z for _, z in exp], "ko", label="Martin & Moyce (1952)")
     for n in (864, 4000, 13500):
         f = list(csv.DictReader(open(f"results/sph_damfront_{n}.csv")))
-        ax.plot([float(r["T"]) for r in f], [float(r["Z"]) for r in f], label=f"hpcplan water, {n} particles")
+        j = json.load(open(f"results/sph_dambreak_{n}.json"))
+        ax.plot([float(r["T"]) for r in f], [float(r["Z"]) for r in f],
+                label=f"hpcplan water, {j['particles']} particles, dx = a/{round(0.05715 / j['particle_spacing'])}")
     ax.axvspan(0.8, 3.0, color="0.9", zorder=0)
     ax.set_xlim(0, 3.5); ax.set_ylim(0.9, 5); ax.set_xlabel("T = t sqrt(2g/a)"); ax.set_ylabel("Z = x/a")
     ax.legend(); fig.tight_layout(); fig.savefig("results/sph_dambreak.png", dpi=120)

@@ -247,17 +247,17 @@ class CpuBackend final : public StepBackend {
     SubstepReport report;
     for (MovingBox& b : s.boxes) move_box(s.domain, b, dt);
     const Stopwatch clock;
-    if (s.params.reorder_every > 0 && s.substeps > 0 &&
-        s.substeps % static_cast<std::uint64_t>(s.params.reorder_every) == 0) {
-      const auto order = s.grid.cell_order();
-      order_.assign(order.begin(), order.end());
-      s.particles.permute(order_);
-    }
     s.grid.build(s.particles);
+    if (s.params.reorder_every > 0 &&
+        s.substeps % static_cast<std::uint64_t>(s.params.reorder_every) == 0)
+      s.grid.sort_particles(s.particles);
     const Particles& p = s.particles;
+    const std::uint32_t capacity = list_capacity(s.params.preset);
+    if (lists_.capacity() != capacity) lists_ = NeighbourLists(capacity);
     if (s.params.preset == Preset::seed) {
+      lists_.build(s.grid, p, [](std::size_t) { return true; });
       report.grid_ms = clock.milliseconds();
-      seed_forces(s, GridNeighbours{});
+      seed_forces(s, lists_);
     } else {
       // Lists for the fluid and for the walls with fluid in reach (most of a tall tank's sides
       // never see any), read by the three passes of the substep.
@@ -275,16 +275,15 @@ class CpuBackend final : public StepBackend {
   }
 
  private:
-  std::vector<std::uint32_t> order_;
-  NeighbourLists lists_{list_capacity(Preset::water)};
+  NeighbourLists lists_;
 };
 
 }  // namespace
 
 std::uint32_t list_capacity(Preset preset) {
-  // A packed water particle has ~75 neighbours within 2.6 dx (more spill over to the grid:
-  // slower, still exact). The seed's gas, a handful at most, reads the grid directly.
-  return preset == Preset::water ? 96 : 0;
+  // A packed water particle has ~75 neighbours within 2.6 dx, the seed's gas a handful; more
+  // spill over to the grid (slower, still exact).
+  return preset == Preset::water ? 96 : 16;
 }
 
 std::unique_ptr<StepBackend> make_cpu_backend() {

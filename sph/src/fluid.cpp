@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "hpcplan/core/splitmix64.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 
 namespace hpcplan::sph {
@@ -14,9 +15,35 @@ std::string_view to_string(Preset p) {
 Fluid::Fluid(FluidState initial, std::unique_ptr<StepBackend> backend)
     : state_(std::move(initial)), backend_(std::move(backend)) {}
 
+namespace {
+
+// The agitation of frame `frame`: a fresh velocity for every fluid particle, from a generator
+// seeded by (run seed, frame, particle id).
+void agitate(FluidState& s, std::uint64_t frame) {
+  Particles& p = s.particles;
+  const FluidParams& f = s.params;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    if (p.wall[i]) continue;
+    SplitMix64 rng(splitmix64_mix(s.seed ^ splitmix64_mix(frame ^ (std::uint64_t{p.id[i]} << 32))));
+    auto uniform = [&](double lo, double hi) {
+      return lo + (hi - lo) * static_cast<double>(rng.next() >> 11) * 0x1.0p-53;
+    };
+    p.vx[i] = uniform(-f.kick_horizontal, f.kick_horizontal);
+    p.vy[i] = uniform(-f.kick_horizontal, f.kick_horizontal);
+    p.vz[i] = uniform(0.0, f.kick_up);
+  }
+}
+
+}  // namespace
+
 FrameReport Fluid::advance_frame(const std::function<void(const FluidState&)>& after_substep) {
   FrameReport report;
   Stopwatch clock;
+  if (state_.params.agitate_every > 0 && frame_ > 0 &&
+      frame_ % static_cast<std::uint64_t>(state_.params.agitate_every) == 0)
+    agitate(state_, frame_);
   ++frame_;
   // The frame ends at an exact multiple of frame_dt, so that rounding never adds a sliver.
   const double end = static_cast<double>(frame_) * state_.params.frame_dt;

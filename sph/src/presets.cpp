@@ -75,6 +75,7 @@ FluidState make_seed(const FluidOptions& o) {
   f.gravity = {0.0, 0.0, -0.02};
   f.cfl = 0.25;
   f.restitution = 0.5;
+  f.agitate_every = 250;
   const double l = seed_box_side(o.particles);
   s.domain = {{0, 0, 0}, {l, l, l}};
   Uniform u(o.seed);
@@ -85,7 +86,10 @@ FluidState make_seed(const FluidOptions& o) {
     bool free = true;
     for (const MovingBox& b : s.boxes) free = free && !b.box.contains(x);
     if (!free) continue;
-    s.particles.add(x, {u(-2.5, 2.5), u(-2.5, 2.5), u(0.0, 3.0)}, 0.0, false);
+    s.particles.add(x,
+                    {u(-f.kick_horizontal, f.kick_horizontal),
+                     u(-f.kick_horizontal, f.kick_horizontal), u(0.0, f.kick_up)},
+                    0.0, false);
     ++i;
   }
   s.fluid_count = o.particles;
@@ -138,6 +142,7 @@ FluidState make_water(const FluidOptions& o) {
   const double height = w.fluid_hi[2];
   f.sound_speed = 10.0 * std::sqrt(2.0 * kG * height);
   f.alpha = 0.1;
+  f.reorder_every = 1;  // dense: sorted particles make every neighbour query a streamed range
   f.cfl = 0.25;
   f.restitution = 0.0;
   s.domain = w.domain;
@@ -241,7 +246,9 @@ std::uint64_t estimated_bytes(const FluidOptions& o) {
 
 FluidState make_fluid(const FluidOptions& o) {
   validate(o);
-  return o.preset == Preset::seed ? make_seed(o) : make_water(o);
+  FluidState s = o.preset == Preset::seed ? make_seed(o) : make_water(o);
+  s.seed = o.seed;
+  return s;
 }
 
 }  // namespace hpcplan::sph

@@ -174,6 +174,11 @@ class CsrBuckets {
   }
   // Every item, bucket after bucket.
   std::span<const std::uint32_t> all_items() const { return items_; }
+  // After the caller renumbered its items in bucket order (item all_items()[k] is now item
+  // k), the lists say so: bucket c holds items start .. end-1.
+  void renumber_in_bucket_order() {
+    for (std::size_t k = 0; k < items_.size(); ++k) items_[k] = static_cast<std::uint32_t>(k);
+  }
   std::size_t cells() const { return start_.empty() ? 0 : start_.size() - 1; }
   std::size_t entries() const { return items_.size(); }
 

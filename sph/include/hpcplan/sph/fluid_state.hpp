@@ -38,6 +38,11 @@ struct FluidParams {
   double cfl = 0.25;              // dt <= cfl * h / (c + |v|max), and <= cfl sqrt(h / |a|max)
   double restitution = 0.5;       // normal velocity kept (reversed) at walls and box faces
   int reorder_every = 4;          // substeps between reorderings of the particles by cell
+  // seed: every this many frames (0: never), each fluid particle is given a fresh random
+  // velocity, +-kick_horizontal on x and y and 0..kick_up on z, drawn from the run's seed, the
+  // frame and the particle's id (so the thread count and the particle order do not matter).
+  int agitate_every = 0;
+  double kick_horizontal = 2.5, kick_up = 3.0;
 };
 
 // An obstacle box moving at a fixed velocity, reflected off the domain's walls (a static box
@@ -55,6 +60,7 @@ struct FluidState {
   NeighbourGrid grid;
   double time = 0.0;
   std::uint64_t substeps = 0;
+  std::uint64_t seed = 1;       // the run's seed (initial state, boxes, agitation)
   std::size_t fluid_count = 0;  // particles that are fluid (the rest are walls)
 };
 
