@@ -40,10 +40,6 @@ void NeighbourGrid::build(const Particles& p) {
     key_[i] = static_cast<std::uint32_t>(c);
   }
   buckets_.build_from_keys(shape_.size(), key_);
-  // Sorted particles that kept their cells give the identity order again.
-  const auto items = buckets_.all_items();
-  in_cell_order_ = true;
-  for (std::size_t k = 0; k < items.size() && in_cell_order_; ++k) in_cell_order_ = items[k] == k;
 }
 
 void NeighbourGrid::sort_particles(Particles& p) {
@@ -53,7 +49,6 @@ void NeighbourGrid::sort_particles(Particles& p) {
   for (std::size_t k = 0; k < order.size(); ++k) keys[k] = key_[order[k]];
   key_.swap(keys);
   buckets_.renumber_in_bucket_order();
-  in_cell_order_ = true;
 }
 
 void NeighbourGrid::mark_cells_of(const Particles& p, std::uint8_t wall_flag) {

@@ -142,7 +142,6 @@ FluidState make_water(const FluidOptions& o) {
   const double height = w.fluid_hi[2];
   f.sound_speed = 10.0 * std::sqrt(2.0 * kG * height);
   f.alpha = 0.1;
-  f.reorder_every = 1;  // dense: sorted particles make every neighbour query a streamed range
   f.cfl = 0.25;
   f.restitution = 0.0;
   s.domain = w.domain;

@@ -42,25 +42,6 @@ class NeighbourGrid {
         const std::uint64_t row = static_cast<std::uint64_t>(n_[0]) * (j + n_[1] * k);
         const std::span<const std::uint32_t> run = buckets_.items_in(row + x0, row + x1);
         if (run.empty()) continue;
-        if (in_cell_order_) {
-          // The run is the index range [first, first + size): distances in blocks, a loop the
-          // compiler vectorises, then the few within the support handed on.
-          const std::uint32_t first = run.front();
-          const std::uint32_t size = static_cast<std::uint32_t>(run.size());
-          for (std::uint32_t b = 0; b < size; b += kBlock) {
-            const std::uint32_t len = size - b < kBlock ? size - b : kBlock;
-            const std::uint32_t q0 = first + b;
-            double r2[kBlock];
-            for (std::uint32_t t = 0; t < len; ++t) {
-              const double dx = x - px[q0 + t], dy = y - py[q0 + t], dz = z - pz[q0 + t];
-              r2[t] = dx * dx + dy * dy + dz * dz;
-            }
-            for (std::uint32_t t = 0; t < len; ++t)
-              if (r2[t] < support2_)
-                fn(q0 + t, x - px[q0 + t], y - py[q0 + t], z - pz[q0 + t], r2[t]);
-          }
-          continue;
-        }
         for (const std::uint32_t q : run) {
           const double dx = x - px[q], dy = y - py[q], dz = z - pz[q];
           const double r2 = dx * dx + dy * dy + dz * dz;
@@ -70,8 +51,8 @@ class NeighbourGrid {
   }
 
   // Reorders the particles by cell (Particles::permute with cell_order()) and renumbers the
-  // grid to match, so that it need not be rebuilt: afterwards every run of cells is a range
-  // of consecutive particles, which the queries read as such.
+  // grid to match, so that it need not be rebuilt: afterwards the particles of a run of cells
+  // are consecutive in memory.
   void sort_particles(Particles& p);
 
   // Marks the cells holding particles whose `wall` flag is `wall_flag` (after build()), so
@@ -105,10 +86,8 @@ class NeighbourGrid {
   Vec3 inv_cell_{};
   std::array<std::int64_t, 3> n_{};
   GridShape<3> shape_;
-  static constexpr std::uint32_t kBlock = 32;
   std::vector<std::uint32_t> key_;  // cell of each particle
   CsrBuckets buckets_;              // particle indices per cell
-  bool in_cell_order_ = false;      // the particles are sorted by cell (sort_particles)
   std::vector<std::uint8_t> marked_;
 };
 
