@@ -9,11 +9,11 @@
 //   produces it, with the physics written correctly:
 //     - particles start uniformly at random in the free part of the box (seeded), each with
 //       the published agitation kick: +-2.5 m/s on each horizontal axis, 0..3 m/s up;
-//     - the kick is repeated every 250 frames (5 s). The published code kicks once, and its
-//       gas then settles within about half a minute (walls keep half the normal speed), long
-//       before a replanning run ends; kicked again, the field stays the dense moving cloud
-//       the paper describes for as long as a run lasts, instead of collapsing into a layer
-//       on the floor;
+//     - the kick is repeated every 250 frames (5 s). The published code kicks once; with a
+//       single kick the gas here loses 99% of its kinetic energy within 40 s (walls keep half
+//       the normal speed), long before a replanning run ends, and packs on the floor. Kicked
+//       again, the field stays the dense moving cloud the paper describes for as long as a
+//       run lasts;
 //     - gravity is the published code's effective acceleration, 0.02 m/s^2 down (it adds m g
 //       as a force and divides by the density; here it is an acceleration, stated as such);
 //     - walls and box faces keep half the normal velocity, reversed.
