@@ -8,10 +8,6 @@
 
 namespace hpcplan::sph {
 
-std::string_view to_string(Preset p) {
-  return p == Preset::seed ? "seed" : "water";
-}
-
 Fluid::Fluid(FluidState initial, std::unique_ptr<StepBackend> backend)
     : state_(std::move(initial)), backend_(std::move(backend)) {}
 

@@ -195,6 +195,10 @@ Scenario parse_scenario(std::string_view name) {
                    "' (expected particles, static, dynamic, dambreak or tank)");
 }
 
+std::string_view to_string(Preset p) {
+  return p == Preset::seed ? "seed" : "water";
+}
+
 std::string_view to_string(Scenario s) {
   switch (s) {
     case Scenario::particles:

@@ -68,10 +68,6 @@ class NeighbourGrid {
   double support() const { return support_; }
   std::uint64_t cells() const { return shape_.size(); }
   const Box3& region() const { return region_; }
-  // Bytes the grid holds for `cells` cells and `particles` particles.
-  static std::uint64_t bytes_for(std::uint64_t cells, std::uint64_t particles) {
-    return 4 * (cells + 1) + 12 * particles;
-  }
 
  private:
   std::int64_t cell_coordinate(double v, int k) const {
@@ -89,18 +85,6 @@ class NeighbourGrid {
   std::vector<std::uint32_t> key_;  // cell of each particle
   CsrBuckets buckets_;              // particle indices per cell
   std::vector<std::uint8_t> marked_;
-};
-
-// The grid read as neighbour lists are (NeighbourLists' for_each), for passes written once
-// over either: the seed's sparse gas has too few neighbours for lists to pay.
-struct GridNeighbours {
-  template <class Fn>
-  void for_each(std::size_t i, const NeighbourGrid& grid, const Particles& p, Fn&& fn) const {
-    grid.for_each_within(p.x[i], p.y[i], p.z[i], p,
-                         [&](std::uint32_t j, double dx, double dy, double dz, double r2) {
-                           if (j != static_cast<std::uint32_t>(i)) fn(j, dx, dy, dz, r2);
-                         });
-  }
 };
 
 }  // namespace hpcplan::sph
