@@ -95,23 +95,15 @@ int run(const SphArgs& a) {
     vtk = std::make_unique<io::VtkSeries>(a.vtk_dir);
     vtk->write(0, fluid.state());
   }
-  // The surge front, every substep: T = t sqrt(2 g / a), Z = (x_front + dx / 2) / a, the front
-  // taken at the fluid's edge, half a spacing beyond the foremost particle.
+  // The surge front, every substep.
   std::vector<std::pair<double, double>> front;
   std::function<void(const sph::FluidState&)> watch_front;
   if (o.scenario == sph::Scenario::dambreak) {
-    const double a_col = sph::kDamBreakColumn;
-    const double g = -fluid.state().params.gravity[2];
-    const double half = 0.5 * fluid.state().params.particle_spacing;
-    auto record = [&front, a_col, g, half](const sph::FluidState& s) {
-      double x = 0.0;
-      const sph::Particles& p = s.particles;
-      for (std::size_t i = 0; i < p.size(); ++i)
-        if (!p.wall[i] && p.x[i] > x) x = p.x[i];
-      front.emplace_back(s.time * std::sqrt(2.0 * g / a_col), (x + half) / a_col);
+    watch_front = [&front](const sph::FluidState& s) {
+      const sph::SurgeFront f = sph::dam_break_front(s);
+      front.emplace_back(f.t, f.z);
     };
-    record(fluid.state());
-    watch_front = record;
+    watch_front(fluid.state());
   }
   const Stopwatch clock;
   info.report = sph::run_frames(

@@ -36,8 +36,7 @@ double tait_density(const FluidParams& f, double p) {
   return f.rest_density * std::pow(p / b + 1.0, 1.0 / 7.0);
 }
 
-template <class Neighbours>
-void seed_forces(FluidState& s, const Neighbours& lists) {
+void seed_forces(FluidState& s, const NeighbourLists& lists) {
   Particles& p = s.particles;
   const FluidParams& f = s.params;
   const Poly6Kernel poly6(f.support);

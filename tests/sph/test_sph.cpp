@@ -311,10 +311,10 @@ TEST(WaterValidation, CoarseDamBreakFollowsMartinAndMoyce) {
   o.particles = 864;  // 12 x 3 x 24
   omp_set_num_threads(omp_get_num_procs());
   Fluid fluid(make_fluid(o), make_cpu_backend());
-  const double a = kDamBreakColumn, g = 9.81, half = 0.5 * fluid.state().params.particle_spacing;
   std::vector<std::pair<double, double>> tz;
   const RunReport r = run_frames(fluid, 9, {}, [&](const FluidState& s) {
-    tz.emplace_back(s.time * std::sqrt(2 * g / a), (summarise(s).front_x + half) / a);
+    const SurgeFront f = dam_break_front(s);
+    tz.emplace_back(f.t, f.z);
   });
   ASSERT_TRUE(r.stable) << r.problem;
   const std::pair<double, double> data[] = {

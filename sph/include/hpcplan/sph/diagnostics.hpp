@@ -16,9 +16,16 @@ struct FluidSummary {
   double neighbours_mean = 0.0;
   std::uint32_t neighbours_max = 0;
   double max_speed = 0.0;
-  double front_x = 0.0;  // the largest x of any fluid particle (the dam break's surge front)
 };
 
 FluidSummary summarise(const FluidState& state);
+
+// The dam break's surge front in Martin and Moyce's variables: T = t sqrt(2 g / a) and
+// Z = (x_front + dx / 2) / a, the front taken at the fluid's edge, half a spacing beyond the
+// foremost particle (a = kDamBreakColumn, g from the state's gravity).
+struct SurgeFront {
+  double t = 0.0, z = 0.0;
+};
+SurgeFront dam_break_front(const FluidState& state);
 
 }  // namespace hpcplan::sph
