@@ -46,6 +46,11 @@ std::vector<ParamSpec> parameter_table() {
       real("step", 0, 1e9, "0", "tree planners' steering distance (0 = a twentieth of the world)"),
       integer("samples", 1, 1e6, "10", "hybrid: random points drawn per expansion"),
       flag("shortcut", "string pulling and tightening after planning"),
+      // The simulator's RRT* (hpcplan sim): seed 000's values are the defaults.
+      integer("iterations", 1, 1e9, "2000", "RRT* samples per replan"),
+      real("rewire_radius", 0, 1e9, "0.6", "RRT*: rewire within this radius (0: shrinking r(n))"),
+      real("goal_radius", 0, 1e9, "0.3", "RRT*: join the goal from within this distance"),
+      real("goal_bias", 0, 1, "0.1", "RRT*: probability of sampling the goal"),
       // The OMPL harness (hpcplan ompl).
       real("grid_weight", 1, 1e9, "1", "the grid planner's weight (1 = A*)"),
       flag("no_shortcut", "the grid planner keeps its lattice path"),
@@ -62,7 +67,8 @@ std::string ParamSpec::option() const {
 }
 
 PlannerRegistry::PlannerRegistry() : params_(parameter_table()) {
-  for (auto* specs : {&grid_planner_specs, &world_planner_specs, &ompl_harness_specs})
+  for (auto* specs :
+       {&grid_planner_specs, &world_planner_specs, &ompl_harness_specs, &fluid_planner_specs})
     for (PlannerSpec& s : specs()) planners_.push_back(std::move(s));
   // Every declared parameter must exist: a typo here would otherwise surface as a missing
   // option at run time.

@@ -7,6 +7,8 @@
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/env/bend_points.hpp"
 #include "hpcplan/env/box_world.hpp"
+#include "hpcplan/env/occupancy_world.hpp"
+#include "hpcplan/env/particle_world.hpp"
 #include "hpcplan/env/path_shortcut.hpp"
 #include "hpcplan/env/sphere_world.hpp"
 #include "hpcplan/graph/continuous_grid.hpp"
@@ -94,22 +96,26 @@ void run_grid(const W& world, const env::Vec<W::kDim>& start, const env::Vec<W::
 template <class W>
 void run_visibility(const W& world, const env::Vec<W::kDim>& start, const env::Vec<W::kDim>& goal,
                     const WorldPlanOptions& o, WorldPlan<W::kDim>& plan) {
-  using Graph = VisibilityGraph<W>;
-  const double extent = world.bounds().largest_side();
-  const double spacing = o.spacing > 0 ? o.spacing : extent * kDefaultSpacing;
-  // Bends sit a millionth of the world off the obstacles: far outside the contact margin, far
-  // below any length that matters.
-  const Graph graph(world, start, goal, env::bend_points(world, spacing, 1e-6 * extent));
-  search::Options so;
-  so.max_states = o.max_states;
-  so.dense_keys = graph.vertex_count();
-  so.stop = Stop(o.cancel);
-  const auto result = search::best_first_search<search::DenseThenHashPolicy>(
-      graph, Graph::kStart, Graph::kGoal, EuclideanToGoal<Graph>{&graph}, so);
-  plan.status = result.status;
-  for (auto s : result.path) plan.path.push_back(graph.point(s));
-  plan.counters = result.counters;
-  plan.counters.peak_states = graph.vertex_count();
+  if constexpr (!requires { env::bend_points(world, 1.0, 0.0); }) {
+    throw InputError("visgraph needs a world of boxes or spheres (it has no bend points here)");
+  } else {
+    using Graph = VisibilityGraph<W>;
+    const double extent = world.bounds().largest_side();
+    const double spacing = o.spacing > 0 ? o.spacing : extent * kDefaultSpacing;
+    // Bends sit a millionth of the world off the obstacles: far outside the contact margin, far
+    // below any length that matters.
+    const Graph graph(world, start, goal, env::bend_points(world, spacing, 1e-6 * extent));
+    search::Options so;
+    so.max_states = o.max_states;
+    so.dense_keys = graph.vertex_count();
+    so.stop = Stop(o.cancel);
+    const auto result = search::best_first_search<search::DenseThenHashPolicy>(
+        graph, Graph::kStart, Graph::kGoal, EuclideanToGoal<Graph>{&graph}, so);
+    plan.status = result.status;
+    for (auto s : result.path) plan.path.push_back(graph.point(s));
+    plan.counters = result.counters;
+    plan.counters.peak_states = graph.vertex_count();
+  }
 }
 
 template <class R, class Plan>
@@ -279,6 +285,14 @@ template WorldPlan<3> plan_in_world(const env::BoxWorld&, const env::Vec<3>&, co
                                     const WorldPlanOptions&);
 template WorldPlan<2> plan_in_world(const env::SphereWorld&, const env::Vec<2>&, const env::Vec<2>&,
                                     const WorldPlanOptions&);
+template WorldPlan<3> plan_in_world(const env::OccupancyWorld&, const env::Vec<3>&,
+                                    const env::Vec<3>&, const WorldPlanOptions&);
+template WorldPlan<3> plan_in_world(const env::ParticleWorld&, const env::Vec<3>&,
+                                    const env::Vec<3>&, const WorldPlanOptions&);
+template std::string path_problem(const env::OccupancyWorld&, const std::vector<env::Vec<3>>&,
+                                  const env::Vec<3>&, const env::Vec<3>&);
+template std::string path_problem(const env::ParticleWorld&, const std::vector<env::Vec<3>>&,
+                                  const env::Vec<3>&, const env::Vec<3>&);
 template std::string path_problem(const env::BoxWorld&, const std::vector<env::Vec<3>>&,
                                   const env::Vec<3>&, const env::Vec<3>&);
 template std::string path_problem(const env::SphereWorld&, const std::vector<env::Vec<2>>&,

@@ -19,6 +19,8 @@
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/env/box_world.hpp"
 #include "hpcplan/env/gog_world.hpp"
+#include "hpcplan/env/occupancy_world.hpp"
+#include "hpcplan/env/particle_world.hpp"
 #include "hpcplan/env/sphere_world.hpp"
 #include "hpcplan/sampling/ompl_planners.hpp"
 #include "hpcplan/sampling/world_space.hpp"
@@ -95,6 +97,12 @@ template tree::TreeResult<3> solve_with_ompl(const env::BoxWorld&, const env::Ve
                                              const env::Vec<3>&, const std::string&, double,
                                              std::uint64_t, std::stop_token);
 template tree::TreeResult<3> solve_with_ompl(const env::GogWorld<3>&, const env::Vec<3>&,
+                                             const env::Vec<3>&, const std::string&, double,
+                                             std::uint64_t, std::stop_token);
+template tree::TreeResult<3> solve_with_ompl(const env::OccupancyWorld&, const env::Vec<3>&,
+                                             const env::Vec<3>&, const std::string&, double,
+                                             std::uint64_t, std::stop_token);
+template tree::TreeResult<3> solve_with_ompl(const env::ParticleWorld&, const env::Vec<3>&,
                                              const env::Vec<3>&, const std::string&, double,
                                              std::uint64_t, std::stop_token);
 template tree::TreeResult<2> solve_with_ompl(const env::SphereWorld&, const env::Vec<2>&,

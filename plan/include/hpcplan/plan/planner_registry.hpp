@@ -30,7 +30,7 @@ struct ParamSpec {
 struct PlannerSpec {
   std::string name;
   std::string family;               // grid search, any-angle, visibility graph, tree, hybrid, ompl
-  std::vector<std::string> worlds;  // settings: grid, map3d, sphere2d, ompl
+  std::vector<std::string> worlds;  // settings: grid, map3d, sphere2d, ompl, sim
   std::vector<std::string> params;  // names in the parameter table
   std::string help;
 };
@@ -57,5 +57,6 @@ class PlannerRegistry {
 std::vector<PlannerSpec> grid_planner_specs();
 std::vector<PlannerSpec> world_planner_specs();
 std::vector<PlannerSpec> ompl_harness_specs();
+std::vector<PlannerSpec> fluid_planner_specs();  // fluid_planner.cpp (hpcplan sim)
 
 }  // namespace hpcplan::plan

@@ -3,7 +3,8 @@
 // among its neighbours within r(n) = min(gamma (log n / n)^(1/d), eta), and then offers itself
 // as parent to those neighbours (rewiring). The goal is a vertex once a step reaches it, so
 // rewiring keeps shortening the returned path; after the first path, samples may come from
-// the informed ellipsoid only (Informed RRT*), which is where improvements can be.
+// the informed ellipsoid only (Informed RRT*), which is where improvements can be. Seed 000's
+// variant fixes the rewiring radius and the goal's capture radius (TreeOptions).
 #include <cmath>
 
 #include "hpcplan/tree/tree_common.hpp"
@@ -47,6 +48,7 @@ TreeResult<W::kDim> rrt_star(const W& world, const env::Vec<W::kDim>& start,
     }
   };
 
+  const double goal_radius = o.goal_radius > 0.0 ? o.goal_radius : run.step;
   TreeResult<D> r;
   add(start, 0, 0.0);
   std::uint32_t goal_vertex = UINT32_MAX;
@@ -79,7 +81,10 @@ TreeResult<W::kDim> rrt_star(const W& world, const env::Vec<W::kDim>& start,
     if (!world.segment_free(points[nearest], q)) continue;
 
     const double n = static_cast<double>(points.size());
-    const double radius = std::min(gamma * std::pow(std::log(n + 1) / (n + 1), 1.0 / D), run.step);
+    const double radius =
+        o.rewire_radius > 0.0
+            ? o.rewire_radius
+            : std::min(gamma * std::pow(std::log(n + 1) / (n + 1), 1.0 / D), run.step);
     index.within(q, radius, near);
     // Cheapest parent among the neighbours that see q (the nearest vertex always does).
     std::uint32_t best_parent = nearest;
@@ -99,7 +104,8 @@ TreeResult<W::kDim> rrt_star(const W& world, const env::Vec<W::kDim>& start,
     }
     if (q == goal) {
       goal_vertex = qv;
-    } else if (!solved() && env::distance<D>(q, goal) <= run.step && world.segment_free(q, goal)) {
+    } else if (!solved() && env::distance<D>(q, goal) <= goal_radius &&
+               world.segment_free(q, goal)) {
       goal_vertex = add(goal, qv, best_cost + env::distance<D>(q, goal));
     }
     if (solved() && r.counters.first_solution_ms < 0) {

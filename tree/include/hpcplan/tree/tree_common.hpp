@@ -30,6 +30,11 @@ struct TreeOptions {
   double gamma_factor = 1.1;   // RRT*: multiple of the asymptotically optimal gamma
   bool informed = true;        // RRT*: sample the ellipsoid that can still improve the path
   bool stop_at_first = false;  // RRT*: return the first solution
+  // RRT* with fixed neighbourhoods (seed 000's replanner): rewire within this radius instead of
+  // the shrinking r(n); 0 = r(n). And join the goal from any vertex within goal_radius that
+  // sees it; 0 = within one step.
+  double rewire_radius = 0.0;
+  double goal_radius = 0.0;
 };
 
 // The one Result: path start..goal exactly, cost = its length, counters.peak_states = tree

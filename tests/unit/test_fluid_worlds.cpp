@@ -1,0 +1,324 @@
+// The fluid's worlds (occupancy grid, particle balls) against brute force, the occupancy graph's
+// searches against Dijkstra, and D* Lite's repairs against a fresh search.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <queue>
+#include <random>
+
+#include "hpcplan/env/occupancy_world.hpp"
+#include "hpcplan/env/particle_world.hpp"
+#include "hpcplan/graph/occupancy_graph.hpp"
+#include "hpcplan/plan/fluid_planner.hpp"
+#include "hpcplan/search/best_first.hpp"
+#include "hpcplan/search/d_star_lite.hpp"
+
+namespace {
+
+using namespace hpcplan;
+using env::Vec;
+
+env::FluidSnapshot random_snapshot(std::uint64_t seed, double side, int particles, int boxes) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, side);
+  env::FluidSnapshot s;
+  s.domain = {{0, 0, 0}, {side, side, side}};
+  for (int i = 0; i < particles; ++i) s.particles.push_back({u(rng), u(rng), u(rng)});
+  // Particles exactly on cell faces, edges and box corners (the grid's cell is side / n).
+  const int n = static_cast<int>(std::lround(side / 0.2));
+  const double c = side / n;
+  s.particles.push_back({c, c, c});
+  s.particles.push_back({0, 0, 0});
+  s.particles.push_back({side, side, side});
+  s.particles.push_back({2 * c, 0.5 * c, side});
+  for (int b = 0; b < boxes; ++b) {
+    const Vec<3> lo{u(rng), u(rng), u(rng)};
+    Vec<3> hi;
+    for (int k = 0; k < 3; ++k) hi[k] = std::min(side, lo[k] + 0.1 + 0.2 * u(rng) / side);
+    s.boxes.push_back({lo, hi});
+  }
+  s.boxes.push_back({{3 * c, 3 * c, 3 * c}, {4 * c, 4 * c, 4 * c}});  // on cell faces
+  return s;
+}
+
+TEST(OccupancyWorld, CoversTheBoxExactlyAndMatchesBruteForce) {
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const double side = 1.0 + 0.37 * static_cast<double>(seed);  // not a multiple of 0.2
+    const env::FluidSnapshot snap = random_snapshot(seed, side, 150, 3);
+    const env::OccupancyConfig cfg;
+    const env::OccupancyWorld w(snap, cfg);
+    const auto n = w.cells_per_axis();
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(n[k], std::lround(side / 0.2));
+      EXPECT_NEAR(n[k] * w.cell_size()[k], side, 1e-12);
+    }
+    std::uint64_t occupied = 0;
+    for (int z = 0; z < n[2]; ++z)
+      for (int y = 0; y < n[1]; ++y)
+        for (int x = 0; x < n[0]; ++x) {
+          const double h = w.cell_size()[0];
+          const Vec<3> c{(x + 0.5) * h, (y + 0.5) * h, (z + 0.5) * h};
+          bool expect = false;
+          for (const auto& p : snap.particles) {
+            double d2 = 0;
+            for (int k = 0; k < 3; ++k) d2 += (p[k] - c[k]) * (p[k] - c[k]);
+            expect = expect || d2 <= cfg.particle_radius * cfg.particle_radius;
+          }
+          for (const auto& b : snap.boxes) {
+            bool overlap = true;
+            const int cell[3] = {x, y, z};
+            for (int k = 0; k < 3; ++k)
+              overlap = overlap && b.lo[k] - cfg.box_inflation < (cell[k] + 1) * h &&
+                        b.hi[k] + cfg.box_inflation > cell[k] * h;
+            expect = expect || overlap;
+          }
+          ASSERT_EQ(w.occupied({x, y, z}), expect) << "cell " << x << "," << y << "," << z;
+          occupied += expect;
+        }
+    EXPECT_EQ(w.occupied_count(), occupied);
+    EXPECT_GT(occupied, 0u);
+    EXPECT_LT(occupied, w.cell_count());
+  }
+}
+
+TEST(OccupancyWorld, SegmentsFreeOnlyThroughFreeCells) {
+  const env::FluidSnapshot snap = random_snapshot(7, 2.0, 60, 1);
+  const env::OccupancyWorld w(snap);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 2.0);
+  int free = 0, blocked = 0;
+  for (int t = 0; t < 3000; ++t) {
+    const Vec<3> a{u(rng), u(rng), u(rng)};
+    Vec<3> b;
+    for (int k = 0; k < 3; ++k) b[k] = std::clamp(a[k] + (u(rng) - 1.0) * 0.5, 0.0, 2.0);
+    const bool f = w.segment_free(a, b);
+    bool samples_free = true;
+    for (int i = 0; i <= 400; ++i)
+      samples_free = samples_free && w.point_free(env::lerp<3>(a, b, i / 400.0));
+    // (Blocked with every sample free happens: touching an occupied cell's face, edge or corner
+    // counts as blocked.)
+    if (f) {
+      EXPECT_TRUE(samples_free);
+    }
+    f ? ++free : ++blocked;
+  }
+  EXPECT_GT(free, 100);
+  EXPECT_GT(blocked, 100);
+  EXPECT_FALSE(w.segment_free({-0.1, 1, 1}, {1, 1, 1}));
+}
+
+TEST(ParticleWorld, PointAndSegmentTestsMatchBruteForce) {
+  const env::FluidSnapshot snap = random_snapshot(11, 3.0, 400, 2);
+  const env::ParticleWorld w(snap);
+  const double r = w.radius();
+  auto d2_segment = [](const Vec<3>& a, const Vec<3>& b, const Vec<3>& c) {
+    double best = 1e300;
+    for (int i = 0; i <= 2000; ++i) {
+      const Vec<3> p = env::lerp<3>(a, b, i / 2000.0);
+      double d2 = 0;
+      for (int k = 0; k < 3; ++k) d2 += (p[k] - c[k]) * (p[k] - c[k]);
+      best = std::min(best, d2);
+    }
+    return best;
+  };
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 3.0);
+  int free = 0;
+  for (int t = 0; t < 400; ++t) {
+    const Vec<3> a{u(rng), u(rng), u(rng)};
+    Vec<3> b;
+    for (int k = 0; k < 3; ++k) b[k] = std::clamp(a[k] + (u(rng) - 1.5) * 0.3, 0.0, 3.0);
+    // Brute force: every ball, every box (sampled finely; tolerance for the sampling).
+    double nearest = 1e300;
+    for (const auto& p : snap.particles) nearest = std::min(nearest, d2_segment(a, b, p));
+    bool in_box = false;
+    for (int i = 0; i <= 2000 && !in_box; ++i)
+      for (const auto& box : snap.boxes)
+        in_box = in_box || box.contains(env::lerp<3>(a, b, i / 2000.0));
+    const bool f = w.segment_free(a, b);
+    if (std::sqrt(nearest) > r + 1e-3 && !in_box) {
+      EXPECT_TRUE(f) << t;
+    }
+    if (std::sqrt(nearest) < r - 1e-3 || in_box) {
+      EXPECT_FALSE(f) << t;
+    }
+    free += f;
+    // Points: exact.
+    bool point_blocked = false;
+    for (const auto& p : snap.particles) {
+      double d2 = 0;
+      for (int k = 0; k < 3; ++k) d2 += (p[k] - a[k]) * (p[k] - a[k]);
+      point_blocked = point_blocked || d2 <= r * r;
+    }
+    for (const auto& box : snap.boxes) point_blocked = point_blocked || box.contains(a);
+    EXPECT_EQ(w.point_free(a), !point_blocked);
+    EXPECT_EQ(w.why_not_free(a).empty(), !point_blocked);
+  }
+  EXPECT_GT(free, 50);
+  EXPECT_LT(free, 390);
+}
+
+// Dijkstra over the occupancy grid with the graph's move rule, written independently.
+double dijkstra(const env::OccupancyWorld& w, std::uint32_t s, std::uint32_t g) {
+  std::vector<double> dist(w.cell_count(), INFINITY);
+  using Item = std::pair<double, std::uint32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> pq;
+  dist[s] = 0;
+  pq.push({0, s});
+  while (!pq.empty()) {
+    auto [d, u] = pq.top();
+    pq.pop();
+    if (d > dist[u]) continue;
+    if (u == g) return d;
+    const auto c = w.cell_of_index(u);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          if (!dx && !dy && !dz) continue;
+          bool ok = true;
+          // every cell of the block between c and c + d
+          for (int mz = 0; mz <= (dz != 0); ++mz)
+            for (int my = 0; my <= (dy != 0); ++my)
+              for (int mx = 0; mx <= (dx != 0); ++mx) {
+                const env::OccupancyWorld::Cell q{c[0] + mx * dx, c[1] + my * dy, c[2] + mz * dz};
+                ok = ok && w.inside(q) && !w.occupied(q);
+              }
+          if (!ok) continue;
+          const std::uint32_t v = w.index({c[0] + dx, c[1] + dy, c[2] + dz});
+          const double nd = d + std::sqrt(double(dx * dx + dy * dy + dz * dz));
+          if (nd < dist[v]) dist[v] = nd, pq.push({nd, v});
+        }
+  }
+  return INFINITY;
+}
+
+struct Octile {
+  const env::OccupancyWorld* w;
+  double operator()(std::uint32_t a, std::uint32_t b) const {
+    return full_connectivity_free_distance(occupancy_delta(*w, a, b)).value();
+  }
+};
+
+std::uint32_t random_free(const env::OccupancyWorld& w, std::mt19937_64& rng) {
+  std::uniform_int_distribution<std::uint32_t> pick(0,
+                                                    static_cast<std::uint32_t>(w.cell_count() - 1));
+  for (;;) {
+    const std::uint32_t c = pick(rng);
+    if (!w.occupied(c)) return c;
+  }
+}
+
+TEST(OccupancyGraph, AStarBothHeuristicsEqualDijkstraAndDStarLiteRepairsToTheOptimum) {
+  std::mt19937_64 rng(17);
+  int solved = 0, unreachable = 0;
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    env::FluidSnapshot snap = random_snapshot(seed, 3.0, 900, 2);
+    env::OccupancyWorld w(snap);
+    OccupancyGraph graph(w);
+    const std::uint32_t s = random_free(w, rng), g = random_free(w, rng);
+    const double truth = dijkstra(w, s, g);
+    search::Options so;
+    so.dense_keys = graph.state_count();
+    const auto octile = search::best_first_search(graph, s, g, OccupancyOctile{w, g}, so);
+    const auto euclid = search::best_first_search(graph, s, g, OccupancyEuclidean{w, g}, so);
+    search::DStarLite<OccupancyGraph, Octile> dstar(Octile{&w});
+    dstar.reset(graph, s, g);
+    const Status ds = dstar.compute(graph, Stop());
+    if (std::isinf(truth)) {
+      ++unreachable;
+      EXPECT_EQ(octile.status, Status::no_path);
+      EXPECT_EQ(euclid.status, Status::no_path);
+      EXPECT_EQ(ds, Status::no_path);
+      continue;
+    }
+    ++solved;
+    ASSERT_EQ(octile.status, Status::solved);
+    EXPECT_NEAR(octile.cost, truth, 1e-9);
+    EXPECT_NEAR(euclid.cost, truth, 1e-9);
+    EXPECT_LE(octile.counters.expanded, euclid.counters.expanded);
+    ASSERT_EQ(ds, Status::solved);
+    EXPECT_NEAR(dstar.distance_to_goal(s), truth, 1e-9);
+    const auto p = dstar.path(graph);
+    ASSERT_FALSE(p.empty());
+    EXPECT_NEAR(search::validated_length(graph, p), truth, 1e-9);
+
+    // The fluid moves: particles shift a little, the start moves along the path. The repaired
+    // search must equal a fresh Dijkstra on the new grid.
+    std::uint32_t start = s;
+    for (int step = 0; step < 4; ++step) {
+      std::normal_distribution<double> jiggle(0.0, 0.05);
+      for (auto& q : snap.particles)
+        for (int k = 0; k < 3; ++k) q[k] = std::clamp(q[k] + jiggle(rng), 0.0, 3.0);
+      env::OccupancyWorld next(snap);
+      OccupancyGraph next_graph(next);
+      const auto path_now = dstar.path(graph);
+      if (path_now.size() > 2) start = path_now[1];
+      if (next.occupied(start) || next.occupied(g)) break;
+      std::vector<std::uint32_t> touched;
+      for (std::uint32_t i = 0; i < next.cell_count(); ++i)
+        if (next.occupied(i) != w.occupied(i)) {
+          const auto c = next.cell_of_index(i);
+          for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx)
+                if (next.inside({c[0] + dx, c[1] + dy, c[2] + dz}))
+                  touched.push_back(next.index({c[0] + dx, c[1] + dy, c[2] + dz}));
+        }
+      w = next;  // the heuristic reads cell coordinates only; the graph is rebuilt on `w`
+      dstar.move_start(start);
+      dstar.edges_changed(graph, touched);
+      const Status r = dstar.compute(graph, Stop());
+      const double fresh = dijkstra(w, start, g);
+      if (std::isinf(fresh)) {
+        EXPECT_EQ(r, Status::no_path);
+      } else {
+        ASSERT_EQ(r, Status::solved);
+        EXPECT_NEAR(dstar.distance_to_goal(start), fresh, 1e-9)
+            << "seed " << seed << " step " << step;
+        const auto rp = dstar.path(graph);
+        ASSERT_FALSE(rp.empty());
+        EXPECT_NEAR(search::validated_length(graph, rp), fresh, 1e-9);
+      }
+      (void)next_graph;
+    }
+  }
+  EXPECT_GT(solved, 6);
+  (void)unreachable;
+}
+
+TEST(FluidPlanner, EscapesABlockedStartAndFailsOnASealedGoal) {
+  env::FluidSnapshot snap;
+  snap.domain = {{0, 0, 0}, {4, 4, 4}};
+  snap.particles.push_back({0.52, 0.5, 0.5});  // right next to the robot
+  for (const std::string algo : {"astar", "astar_euclid", "dstar_lite", "rrtstar"}) {
+    plan::FluidPlanOptions o;
+    o.algo = algo;
+    plan::FluidReplanner planner(o);
+    const auto p = planner.plan(snap, {0.5, 0.5, 0.5}, {3.5, 3.5, 3.5}, 0);
+    ASSERT_EQ(p.status, Status::solved) << algo;
+    EXPECT_TRUE(p.start_escaped) << algo;
+    EXPECT_FALSE(p.goal_escaped) << algo;
+    EXPECT_EQ(p.path.front(), (Vec<3>{0.5, 0.5, 0.5}));
+    EXPECT_EQ(p.path.back(), (Vec<3>{3.5, 3.5, 3.5}));
+    EXPECT_GE(p.length, std::sqrt(27.0) - 1e-9);
+    EXPECT_LE(p.length, p.raw_length + 1e-9);
+  }
+  // The goal inside a closed shell of boxes: every planner fails, none hangs.
+  env::FluidSnapshot sealed;
+  sealed.domain = {{0, 0, 0}, {4, 4, 4}};
+  const double lo = 2.4, hi = 3.6, t = 0.05;
+  sealed.boxes = {{{lo, lo, lo}, {hi, hi, lo + t}}, {{lo, lo, hi - t}, {hi, hi, hi}},
+                  {{lo, lo, lo}, {hi, lo + t, hi}}, {{lo, hi - t, lo}, {hi, hi, hi}},
+                  {{lo, lo, lo}, {lo + t, hi, hi}}, {{hi - t, lo, lo}, {hi, hi, hi}}};
+  for (const std::string algo : {"astar", "dstar_lite", "rrtstar"}) {
+    plan::FluidPlanOptions o;
+    o.algo = algo;
+    plan::FluidReplanner planner(o);
+    const auto p = planner.plan(sealed, {0.5, 0.5, 0.5}, {3.0, 3.0, 3.0}, 0);
+    EXPECT_NE(p.status, Status::solved) << algo;
+    EXPECT_NE(p.reason, plan::FailReason::none) << algo;
+    EXPECT_TRUE(p.path.empty());
+  }
+}
+
+}  // namespace
