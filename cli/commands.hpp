@@ -22,5 +22,6 @@ Action register_map3d_command(CLI::App& app);
 Action register_sphere2d_command(CLI::App& app);
 Action register_planners_command(CLI::App& app);
 Action register_sph_command(CLI::App& app);
+Action register_sim_command(CLI::App& app);
 
 }  // namespace hpcplan::cli

@@ -1,0 +1,157 @@
+// `hpcplan sim`: seed 000's experiment: a robot replanning through the live fluid. Per-run and
+// per-replan CSV, the robot's trajectory, one JSON summary per invocation, or a readable table.
+#include <omp.h>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "hpcplan/core/atomic_file.hpp"
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/core/memory.hpp"
+#include "hpcplan/core/progress.hpp"
+#include "hpcplan/core/stopwatch.hpp"
+#include "hpcplan/io/sim_report.hpp"
+#include "hpcplan/sim/simulator.hpp"
+#include "hpcplan/sph/presets.hpp"
+#include "number_options.hpp"
+
+namespace hpcplan::cli {
+namespace {
+
+struct SimArgs {
+  sim::SimOptions o;
+  std::string scenario = "particles", pace = "lockstep";
+  int threads = 0;
+  std::string csv, replan_log, trajectory, output;
+  bool json = false, no_timings = false;
+  double memory_mb = 0.0;
+};
+
+int run(SimArgs& a) {
+  sim::SimOptions& o = a.o;
+  o.scenario = sph::parse_scenario(a.scenario);
+  o.pace = sim::parse_pace(a.pace);
+  sim::validate(o);
+  sph::FluidOptions fo;
+  fo.scenario = o.scenario;
+  fo.particles = o.particles;
+  const std::uint64_t need = sph::estimated_bytes(fo);
+  const double budget = a.memory_mb > 0.0 ? a.memory_mb * 1048576.0
+                                          : 0.5 * static_cast<double>(available_memory_bytes());
+  if (budget > 0.0 && static_cast<double>(need) > budget)
+    throw InputError("--particles " + std::to_string(o.particles) + " needs about " +
+                     std::to_string(need / 1048576) + " MiB for the fluid, over the budget of " +
+                     std::to_string(static_cast<std::uint64_t>(budget / 1048576)) +
+                     " MiB (--memory-mb)");
+  for (const auto& [path, option] : {std::pair{a.csv, "--csv"}, {a.replan_log, "--replan-log"},
+                                     {a.trajectory, "--trajectory"}, {a.output, "--output"}})
+    if (!path.empty()) require_writable_destination(path, option);
+  if (a.threads > 0) omp_set_num_threads(a.threads);
+
+  io::SimInvocation inv;
+  inv.options = o;
+  inv.threads = a.threads > 0 ? a.threads : omp_get_max_threads();
+  std::vector<io::TrajectoryRow> trajectory;
+  std::function<void(const sim::FrameView&)> on_frame;
+  if (!a.trajectory.empty())
+    on_frame = [&](const sim::FrameView& v) {
+      trajectory.push_back({v.run, v.frame, v.fluid->time, v.robot, v.goal});
+    };
+  const Stopwatch clock;
+  inv.result = sim::run_simulation(
+      o,
+      [&](const sim::RunRecord& r) {
+        if (o.runs > 1)
+          std::fprintf(stderr, "run %d/%d: %s after %.1f s simulated (%.1f s wall)\n",
+                       r.run_number, o.runs, r.end.c_str(), r.sim_time_s, r.wall_time_s);
+      },
+      on_frame);
+  inv.seconds = clock.seconds();
+
+  const bool timings = !a.no_timings;
+  if (!a.csv.empty()) write_file_atomically(a.csv, io::sim_runs_csv(inv.result.runs, true, timings));
+  if (!a.replan_log.empty())
+    write_file_atomically(a.replan_log, io::sim_replans_csv(inv.result.replans, timings));
+  if (!a.trajectory.empty()) write_file_atomically(a.trajectory, io::trajectory_csv(trajectory));
+  const std::string json = io::to_json(inv).dump() + "\n";
+  if (!a.output.empty()) write_file_atomically(a.output, json);
+  std::fputs(a.json ? json.c_str() : io::to_summary(inv).c_str(), stdout);
+  return kExitOk;
+}
+
+}  // namespace
+
+Action register_sim_command(CLI::App& app) {
+  auto args = std::make_shared<SimArgs>();
+  SimArgs& a = *args;
+  sim::SimOptions& o = a.o;
+  CLI::App* cmd =
+      app.add_subcommand("sim", "Replan through the live fluid (seed 000's simulator)");
+  add_number(cmd, "--particles", o.particles, "Fluid particles (the seed preset)", 2, 200'000'000)
+      ->capture_default_str();
+  cmd->add_option("--scenario", a.scenario, "particles | static | dynamic")->capture_default_str();
+  cmd->add_option("--algo", o.planner.algo,
+                  "Planner: astar, astar_euclid, dstar_lite, rrtstar (hpcplan planners --world "
+                  "sim), or any map3d planner")
+      ->capture_default_str();
+  cmd->add_option("--world", o.planner.world,
+                  "map3d planners: particles (balls of 0.10) or occupancy (the A* grid)");
+  add_number(cmd, "--runs", o.runs, "Runs, numbered 1..R, each seeded from (seed, run)", 1,
+             1'000'000)
+      ->capture_default_str();
+  add_number(cmd, "--seed", o.seed, "Seed of the fluid, the robot and goal, and the planners")
+      ->capture_default_str();
+  cmd->add_option("--pace", a.pace,
+                  "lockstep (deterministic, plans applied after --lockstep-delay frames) | "
+                  "realtime (planner thread, frames of at least 0.02 s wall)")
+      ->capture_default_str();
+  add_number(cmd, "--replan-every", o.replan_every, "Frames between replans", 1, 1'000'000)
+      ->capture_default_str();
+  add_number(cmd, "--lockstep-delay", o.lockstep_delay,
+             "Lockstep: frames between a plan's launch and its use", 0, 1'000'000)
+      ->capture_default_str();
+  add_number(cmd, "--settle-frames", o.settle_frames,
+             "Frames the fluid settles before the robot and goal are placed", 0, 1'000'000)
+      ->capture_default_str();
+  add_number(cmd, "--max-sim-s", o.max_sim_s, "Simulated seconds before a run counts as failed",
+             1e-3, 1e9)
+      ->capture_default_str();
+  add_number(cmd, "--max-wall-s", o.max_wall_s,
+             "Wall seconds before a run counts as failed (0: no cap)", 0, 1e9)
+      ->capture_default_str();
+  add_number(cmd, "--iterations", o.planner.iterations, "rrtstar: samples per replan", 1, 1e9)
+      ->capture_default_str();
+  add_number(cmd, "--step", o.planner.step, "rrtstar: steering distance", 1e-9, 1e9)
+      ->capture_default_str();
+  add_number(cmd, "--rewire-radius", o.planner.rewire_radius, "rrtstar: rewiring radius", 0, 1e9)
+      ->capture_default_str();
+  add_number(cmd, "--goal-radius", o.planner.goal_radius, "rrtstar: goal capture radius", 0, 1e9)
+      ->capture_default_str();
+  add_number(cmd, "--goal-bias", o.planner.goal_bias, "rrtstar: goal sampling probability", 0, 1)
+      ->capture_default_str();
+  add_number(cmd, "--time", o.planner.time_s, "map3d planners: seconds per replan", 1e-6, 1e9)
+      ->capture_default_str();
+  add_number(cmd, "--escape", o.planner.escape_cells,
+             "How far (cells of 0.2) a blocked robot or goal may move to plan", 0, 100)
+      ->capture_default_str();
+  add_number(cmd, "--threads", a.threads, "OpenMP threads of the fluid", 1, 4096);
+  add_number(cmd, "--memory-mb", a.memory_mb,
+             "Refuse runs needing more memory (default: half the available)", 1, 1e9);
+  cmd->add_option("--csv", a.csv, "Write one row per run (seed 000's columns first)");
+  cmd->add_option("--replan-log", a.replan_log, "Write one row per replan");
+  cmd->add_option("--trajectory", a.trajectory, "Write the robot and goal after every frame");
+  cmd->add_flag("--no-timings", a.no_timings,
+                "Leave timing columns empty in the CSVs (lockstep runs then compare byte for byte)");
+  cmd->add_flag("--json", a.json, "Print the result as one JSON object");
+  cmd->add_option("--output", a.output, "Also write the JSON result to this file (atomically)");
+  return [args](const Context& context) {
+    if (context.comm && context.comm->size() > 1)
+      throw InputError("hpcplan sim runs in one process (a frame loop and a planner thread); "
+                       "start it without mpirun");
+    return run(*args);
+  };
+}
+
+}  // namespace hpcplan::cli

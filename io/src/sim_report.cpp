@@ -1,0 +1,195 @@
+#include "hpcplan/io/sim_report.hpp"
+
+#include <cinttypes>
+#include <cstdio>
+#include <map>
+
+namespace hpcplan::io {
+
+namespace {
+
+std::string num(double v, int digits = 6) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+double mean(const std::vector<double>& xs) {
+  double s = 0.0;
+  for (double x : xs) s += x;
+  return xs.empty() ? 0.0 : s / static_cast<double>(xs.size());
+}
+
+}  // namespace
+
+std::string sim_runs_csv(const std::vector<sim::RunRecord>& runs, bool header, bool timings) {
+  std::string out;
+  if (header)
+    out +=
+        "scenario,algorithm,run_number,success,time_to_goal_s,total_replans,failed_replans,"
+        "avg_plan_time_us,min_plan_time_us,max_plan_time_us,avg_path_length,avg_path_nodes,"
+        "avg_path_divergence,particle_count,seed_avg_path_length,sim_time_to_goal_s,"
+        "wall_time_to_goal_s,p50_plan_time_us,p95_plan_time_us,p99_plan_time_us,end,"
+        "fail_start_blocked,fail_goal_blocked,fail_disconnected,fail_budget,cancelled,"
+        "start_escapes,goal_escapes,sph_ms_per_frame,snapshot_ms,frames,distance_travelled,"
+        "start_goal_distance,seed,pace\n";
+  auto t = [&](double v) { return timings ? num(v) : std::string(); };
+  for (const sim::RunRecord& r : runs) {
+    out += r.scenario + "," + r.algorithm + "," + std::to_string(r.run_number) + "," +
+           (r.success ? "1" : "0") + "," + num(r.sim_time_s) + "," +
+           std::to_string(r.total_replans) + "," + std::to_string(r.failed_replans) + "," +
+           t(r.avg_plan_time_us) + "," + t(r.min_plan_time_us) + "," + t(r.max_plan_time_us) +
+           "," + num(r.avg_path_length) + "," + num(r.avg_path_nodes) + "," +
+           num(r.avg_path_divergence) + "," + std::to_string(r.particle_count) + "," +
+           num(r.seed_avg_path_length) + "," + (r.success ? num(r.sim_time_s) : "") + "," +
+           (r.success ? t(r.wall_time_s) : "") + "," + t(r.p50_plan_time_us) + "," +
+           t(r.p95_plan_time_us) + "," + t(r.p99_plan_time_us) + "," + r.end + "," +
+           std::to_string(r.start_blocked) + "," + std::to_string(r.goal_blocked) + "," +
+           std::to_string(r.disconnected) + "," + std::to_string(r.budget) + "," +
+           std::to_string(r.cancelled) + "," + std::to_string(r.start_escapes) + "," +
+           std::to_string(r.goal_escapes) + "," + t(r.sph_ms_per_frame) + "," +
+           t(r.snapshot_ms) + "," + std::to_string(r.frames) + "," +
+           num(r.distance_travelled) + "," + num(r.start_goal_distance) + "," +
+           std::to_string(r.seed) + "," + r.pace + "\n";
+  }
+  return out;
+}
+
+std::string sim_replans_csv(const std::vector<sim::ReplanRecord>& replans, bool timings) {
+  std::string out =
+      "run,frame,sim_time_s,algorithm,status,reason,plan_us,expanded,length,waypoints,divergence,"
+      "world_us,search_us,smooth_us,start_escaped,goal_escaped\n";
+  auto t = [&](double v) { return timings ? num(v) : std::string(); };
+  for (const sim::ReplanRecord& r : replans)
+    out += std::to_string(r.run) + "," + std::to_string(r.frame) + "," + num(r.sim_time_s) +
+           "," + r.algorithm + "," + (r.solved ? "solved" : "failed") + "," + r.reason + "," +
+           t(r.plan_us) + "," + std::to_string(r.expanded) + "," + num(r.length) + "," +
+           std::to_string(r.waypoints) + "," + (r.divergence >= 0 ? num(r.divergence) : "") +
+           "," + t(r.world_us) + "," + t(r.search_us) + "," + t(r.smooth_us) + "," +
+           (r.start_escaped ? "1" : "0") + "," + (r.goal_escaped ? "1" : "0") + "\n";
+  return out;
+}
+
+nlohmann::json to_json(const SimInvocation& s) {
+  const sim::SimOptions& o = s.options;
+  nlohmann::json j;
+  j["scenario"] = std::string(sph::to_string(o.scenario));
+  j["algorithm"] = o.planner.algo;
+  j["particles"] = o.particles;
+  j["runs_requested"] = o.runs;
+  j["seed"] = o.seed;
+  j["pace"] = std::string(sim::to_string(o.pace));
+  j["replan_every"] = o.replan_every;
+  j["max_sim_s"] = o.max_sim_s;
+  j["max_wall_s"] = o.max_wall_s;
+  j["threads"] = s.threads;
+  j["seconds"] = s.seconds;
+  nlohmann::json rows = nlohmann::json::array();
+  std::vector<double> ttg, plan, plan_p50, plan_p99, fail_rate, lengths, sph_ms;
+  std::uint64_t successes = 0, replans = 0, failed = 0, escapes = 0;
+  for (const sim::RunRecord& r : s.result.runs) {
+    nlohmann::json row;
+    row["run_number"] = r.run_number;
+    row["success"] = r.success;
+    row["end"] = r.end;
+    row["time_to_goal_s"] = r.sim_time_s;
+    row["wall_time_s"] = r.wall_time_s;
+    row["frames"] = r.frames;
+    row["total_replans"] = r.total_replans;
+    row["failed_replans"] = r.failed_replans;
+    row["failures"] = {{"start_blocked", r.start_blocked},
+                       {"goal_blocked", r.goal_blocked},
+                       {"disconnected", r.disconnected},
+                       {"budget", r.budget}};
+    row["cancelled"] = r.cancelled;
+    row["start_escapes"] = r.start_escapes;
+    row["goal_escapes"] = r.goal_escapes;
+    row["plan_time_us"] = {{"mean", r.avg_plan_time_us}, {"min", r.min_plan_time_us},
+                           {"max", r.max_plan_time_us},  {"p50", r.p50_plan_time_us},
+                           {"p95", r.p95_plan_time_us},  {"p99", r.p99_plan_time_us}};
+    row["avg_path_length"] = r.avg_path_length;
+    row["seed_avg_path_length"] = r.seed_avg_path_length;
+    row["avg_path_nodes"] = r.avg_path_nodes;
+    row["avg_path_divergence"] = r.avg_path_divergence;
+    row["particle_count"] = r.particle_count;
+    row["sph_ms_per_frame"] = r.sph_ms_per_frame;
+    row["snapshot_ms"] = r.snapshot_ms;
+    row["distance_travelled"] = r.distance_travelled;
+    row["start_goal_distance"] = r.start_goal_distance;
+    rows.push_back(row);
+    if (r.success) ++successes, ttg.push_back(r.sim_time_s);
+    replans += r.total_replans;
+    failed += r.failed_replans;
+    escapes += r.start_escapes;
+    plan.push_back(r.avg_plan_time_us);
+    plan_p50.push_back(r.p50_plan_time_us);
+    plan_p99.push_back(r.p99_plan_time_us);
+    if (r.total_replans) fail_rate.push_back(double(r.failed_replans) / double(r.total_replans));
+    if (r.avg_path_length > 0) lengths.push_back(r.avg_path_length);
+    sph_ms.push_back(r.sph_ms_per_frame);
+  }
+  j["runs"] = rows;
+  // Plan-time percentiles over every replan of the invocation.
+  std::vector<double> all;
+  for (const sim::ReplanRecord& r : s.result.replans)
+    if (r.reason != "cancelled") all.push_back(r.plan_us);
+  j["aggregate"] = {
+      {"runs", s.result.runs.size()},
+      {"successes", successes},
+      {"success_rate", s.result.runs.empty() ? 0.0 : double(successes) / double(s.result.runs.size())},
+      {"time_to_goal_s_mean", mean(ttg)},
+      {"total_replans", replans},
+      {"failed_replans", failed},
+      {"failed_replan_rate", replans ? double(failed) / double(replans) : 0.0},
+      {"start_escapes", escapes},
+      {"plan_time_us_mean", mean(all)},
+      {"plan_time_us_p50", sim::quantile(all, 0.5)},
+      {"plan_time_us_p95", sim::quantile(all, 0.95)},
+      {"plan_time_us_p99", sim::quantile(all, 0.99)},
+      {"avg_path_length", mean(lengths)},
+      {"sph_ms_per_frame_median", sim::quantile(sph_ms, 0.5)},
+  };
+  return j;
+}
+
+std::string to_summary(const SimInvocation& s) {
+  const nlohmann::json j = to_json(s);
+  std::string out;
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "hpcplan sim: %s, %s, %zu particles, %s pacing, seed %" PRIu64 ", %d thread(s)\n",
+                j["scenario"].get<std::string>().c_str(), j["algorithm"].get<std::string>().c_str(),
+                s.options.particles, j["pace"].get<std::string>().c_str(), s.options.seed, s.threads);
+  out += line;
+  out += "run  result        t_goal(s)  replans  failed  plan p50(ms)  p99(ms)  path len  escapes\n";
+  for (const sim::RunRecord& r : s.result.runs) {
+    std::snprintf(line, sizeof line, "%3d  %-12s  %9.2f  %7" PRIu64 "  %6" PRIu64 "  %12.3f  %7.3f  %8.2f  %7" PRIu64 "\n",
+                  r.run_number, r.end.c_str(), r.sim_time_s, r.total_replans, r.failed_replans,
+                  r.p50_plan_time_us / 1e3, r.p99_plan_time_us / 1e3, r.avg_path_length,
+                  r.start_escapes);
+    out += line;
+  }
+  const auto& a = j["aggregate"];
+  std::snprintf(line, sizeof line,
+                "reached the goal in %d of %zu runs; failed replans %.1f%%; plan time p50 %.3f ms, "
+                "p99 %.3f ms; fluid %.2f ms/frame (median)\n",
+                a["successes"].get<int>(), s.result.runs.size(),
+                100.0 * a["failed_replan_rate"].get<double>(),
+                a["plan_time_us_p50"].get<double>() / 1e3, a["plan_time_us_p99"].get<double>() / 1e3,
+                a["sph_ms_per_frame_median"].get<double>());
+  out += line;
+  return out;
+}
+
+std::string trajectory_csv(const std::vector<TrajectoryRow>& rows) {
+  std::string out = "run,frame,t,robot_x,robot_y,robot_z,goal_x,goal_y,goal_z\n";
+  for (const TrajectoryRow& r : rows) {
+    out += std::to_string(r.run) + "," + std::to_string(r.frame) + "," + num(r.t, 17);
+    for (double v : r.robot) out.append(",").append(num(v, 17));
+    for (double v : r.goal) out.append(",").append(num(v, 17));
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace hpcplan::io

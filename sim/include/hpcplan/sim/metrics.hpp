@@ -1,0 +1,69 @@
+#pragma once
+// What a run records: one row per replan and one per run, with seed 000's columns and the ones
+// its published figures could not tell apart (simulated and wall time, plan-time percentiles,
+// why replans failed, the escapes from blocked ends).
+//
+// Divergence (the seed's "mean distance between consecutive planned paths"): the new path is
+// sampled every 0.05 along its length, both ends included, and each sample's distance to the
+// nearest point of the previous path (the polyline, exactly) is averaged. Only consecutive
+// successful plans are compared; a run's divergence is the mean over those pairs.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hpcplan/env/point.hpp"
+
+namespace hpcplan::sim {
+
+struct ReplanRecord {
+  int run = 0;
+  std::uint64_t frame = 0;  // when it was launched
+  double sim_time_s = 0.0;  // ... in simulated seconds
+  std::string algorithm;
+  bool solved = false;
+  std::string reason;  // empty when solved: start_blocked, goal_blocked, disconnected, budget,
+                       // cancelled
+  double plan_us = 0.0;  // the whole replan: world, search, smoothing
+  double world_us = 0.0, search_us = 0.0, smooth_us = 0.0;
+  std::uint64_t expanded = 0;
+  double length = 0.0;
+  std::size_t waypoints = 0;
+  double divergence = -1.0;  // -1: no previous successful plan to compare with
+  bool start_escaped = false, goal_escaped = false;
+};
+
+struct RunRecord {
+  std::string scenario, algorithm, pace;
+  int run_number = 0;
+  std::uint64_t seed = 0;
+  std::size_t particle_count = 0;
+  bool success = false;
+  std::string end;  // goal_reached, sim_time_cap, wall_time_cap, fluid_unstable
+  double sim_time_s = 0.0;   // simulated seconds until the goal (or the cap)
+  double wall_time_s = 0.0;  // wall seconds of the replanning loop
+  std::uint64_t frames = 0;
+  std::uint64_t total_replans = 0, failed_replans = 0;
+  std::uint64_t start_blocked = 0, goal_blocked = 0, disconnected = 0, budget = 0, cancelled = 0;
+  std::uint64_t start_escapes = 0, goal_escapes = 0;
+  double avg_plan_time_us = 0.0, min_plan_time_us = 0.0, max_plan_time_us = 0.0;
+  double p50_plan_time_us = 0.0, p95_plan_time_us = 0.0, p99_plan_time_us = 0.0;
+  double avg_path_length = 0.0;        // over successful replans only
+  double seed_avg_path_length = 0.0;   // the seed's: total length over all replans
+  double avg_path_nodes = 0.0;         // waypoints, successful replans
+  double avg_path_divergence = 0.0;
+  double sph_ms_per_frame = 0.0;       // median
+  double snapshot_ms = 0.0;            // median, per replan
+  double distance_travelled = 0.0;
+  double start_goal_distance = 0.0;
+};
+
+// The divergence of `path` from `previous` as defined above (0 when either is empty).
+double divergence(const std::vector<env::Vec<3>>& previous, const std::vector<env::Vec<3>>& path);
+
+// The q-quantile (0..1) of xs by linear interpolation; 0 for an empty list.
+double quantile(std::vector<double> xs, double q);
+
+// Fills the aggregate fields of `run` from its replans.
+void summarise_replans(RunRecord& run, const std::vector<ReplanRecord>& replans);
+
+}  // namespace hpcplan::sim

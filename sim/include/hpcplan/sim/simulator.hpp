@@ -1,0 +1,79 @@
+#pragma once
+// Seed 000's experiment: a robot crossing the live fluid towards a goal particle, replanning
+// every few frames.
+//
+// One run: the fluid is built and settles for `settle_frames`; then a robot and a goal are
+// drawn from the fluid particles at least 0.5 L apart (seeded; their particles stop being
+// obstacles), and the frame loop runs: step the fluid, take any finished plan, move the robot,
+// stop at the goal (within 4 particle radii) or at a cap, and every `replan_every` frames ask
+// for a plan from the robot to where the goal is now. Replans count from the first one after
+// the robot and goal exist; a run that hits --max-sim-s or --max-wall-s is recorded as failed.
+//
+// Pacing:
+//   realtime  the seed's: plans run on the planner thread (one at a time) while frames go on,
+//             and a frame never takes less than its 0.02 s of wall time, so a slow plan costs
+//             simulated time as on a real robot;
+//   lockstep  deterministic: a plan runs on the frame loop's thread at its frame and is applied
+//             `lockstep_delay` frames later. Fluid, robot, replans and paths then depend only
+//             on the seed and the thread count (timings aside).
+//
+// Threads: run_simulation owns its fluid, robot and planner thread; observers are called on the
+// frame loop's thread.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "hpcplan/plan/fluid_planner.hpp"
+#include "hpcplan/sim/metrics.hpp"
+#include "hpcplan/sim/robot.hpp"
+#include "hpcplan/sph/fluid_state.hpp"
+#include "hpcplan/sph/presets.hpp"
+
+namespace hpcplan::sim {
+
+enum class Pace { realtime, lockstep };
+Pace parse_pace(std::string_view name);  // InputError if unknown
+std::string_view to_string(Pace p);
+
+struct SimOptions {
+  sph::Scenario scenario = sph::Scenario::particles;
+  std::size_t particles = 1500;
+  plan::FluidPlanOptions planner;  // planner.algo names the planner
+  int runs = 1;
+  std::uint64_t seed = 1;
+  Pace pace = Pace::lockstep;
+  int replan_every = 10;     // frames
+  int lockstep_delay = 1;    // frames between a lockstep plan's launch and its use
+  int settle_frames = 200;   // the seed's settling phase
+  double max_sim_s = 300.0;  // simulated seconds before a run is failed
+  double max_wall_s = 0.0;   // wall seconds before a run is failed; 0 = none
+  double goal_radius = 0.2;  // 4 particle radii of 0.05
+  RobotParams robot;
+};
+
+// What the frame loop shows an observer after each frame (for VTK and pictures).
+struct FrameView {
+  int run = 0;
+  std::uint64_t frame = 0;  // since the robot and goal were placed
+  const sph::FluidState* fluid = nullptr;
+  env::Vec<3> robot{}, goal{};
+  const std::vector<env::Vec<3>>* plan = nullptr;  // the path the robot follows (may be empty)
+  const std::vector<env::Vec<3>>* trail = nullptr;  // where the robot has been
+};
+
+struct SimResult {
+  std::vector<RunRecord> runs;
+  std::vector<ReplanRecord> replans;
+};
+
+// Checks the options (InputError with a one-line reason).
+void validate(const SimOptions& options);
+
+// Runs options.runs runs (run numbers 1..runs, each seeded from (seed, run number)).
+// `on_run` sees each run's record as it ends (progress); `on_frame` every frame.
+SimResult run_simulation(const SimOptions& options,
+                         const std::function<void(const RunRecord&)>& on_run = {},
+                         const std::function<void(const FrameView&)>& on_frame = {});
+
+}  // namespace hpcplan::sim

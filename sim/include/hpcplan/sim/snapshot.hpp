@@ -1,0 +1,21 @@
+#pragma once
+// The frame as planners see it: obstacle particles and boxes copied out of the fluid between
+// frames (the planner thread never reads the fluid's arrays). The robot's and the goal's own
+// particles are left out: a robot does not plan around itself or its target.
+#include <cstdint>
+#include <span>
+
+#include "hpcplan/env/fluid_snapshot.hpp"
+#include "hpcplan/sph/fluid_state.hpp"
+
+namespace hpcplan::sim {
+
+// Fluid particles (walls excluded) whose id is not in `exclude`, and the obstacle boxes.
+env::FluidSnapshot take_snapshot(const sph::FluidState& state,
+                                 std::span<const std::uint32_t> exclude);
+
+// Where the particle with this id is now (particles are reordered by cell every few substeps,
+// so its index moves); throws RunError if no particle has it.
+env::Vec<3> particle_position(const sph::FluidState& state, std::uint32_t id);
+
+}  // namespace hpcplan::sim

@@ -1,0 +1,242 @@
+#include "hpcplan/sim/simulator.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <thread>
+
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/core/splitmix64.hpp"
+#include "hpcplan/core/stopwatch.hpp"
+#include "hpcplan/sim/planner_thread.hpp"
+#include "hpcplan/sim/snapshot.hpp"
+#include "hpcplan/sph/fluid.hpp"
+
+namespace hpcplan::sim {
+
+Pace parse_pace(std::string_view name) {
+  if (name == "realtime") return Pace::realtime;
+  if (name == "lockstep") return Pace::lockstep;
+  throw InputError("unknown --pace " + std::string(name) + " (realtime or lockstep)");
+}
+
+std::string_view to_string(Pace p) { return p == Pace::realtime ? "realtime" : "lockstep"; }
+
+void validate(const SimOptions& o) {
+  using sph::Scenario;
+  if (o.scenario != Scenario::particles && o.scenario != Scenario::static_boxes &&
+      o.scenario != Scenario::dynamic_boxes)
+    throw InputError("the simulator runs --scenario particles, static or dynamic (not " +
+                     std::string(sph::to_string(o.scenario)) + ")");
+  if (o.particles < 2) throw InputError("--particles must be at least 2 (a robot and a goal)");
+  if (o.runs < 1) throw InputError("--runs must be at least 1");
+  if (o.replan_every < 1) throw InputError("--replan-every must be at least 1 frame");
+  if (o.lockstep_delay < 0) throw InputError("--lockstep-delay must not be negative");
+  if (o.settle_frames < 0) throw InputError("--settle-frames must not be negative");
+  if (!(o.max_sim_s > 0) || !std::isfinite(o.max_sim_s))
+    throw InputError("--max-sim-s must be a positive number of seconds");
+  if (!(o.max_wall_s >= 0) || !std::isfinite(o.max_wall_s))
+    throw InputError("--max-wall-s must be a number of seconds >= 0 (0: no cap)");
+  if (!(o.goal_radius > 0)) throw InputError("the goal radius must be positive");
+  sph::FluidOptions fo;
+  fo.scenario = o.scenario;
+  fo.particles = o.particles;
+  sph::validate(fo);
+  plan::FluidReplanner check(o.planner);  // throws for an unknown planner or bad options
+}
+
+namespace {
+
+struct Placement {
+  std::uint32_t robot_id = 0, goal_id = 0;
+  env::Vec<3> robot{}, goal{};
+};
+
+// Two fluid particles at least half the box apart, drawn from the run's generator (the
+// farthest pair drawn, if 10,000 draws find none).
+Placement place(const sph::FluidState& s, std::uint64_t seed) {
+  const sph::Particles& p = s.particles;
+  std::vector<std::size_t> fluid;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (!p.wall[i]) fluid.push_back(i);
+  // Draw by id order, not storage order, so the choice does not depend on the reordering.
+  std::sort(fluid.begin(), fluid.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
+  const double side = s.domain.hi[0] - s.domain.lo[0];
+  SplitMix64 rng(splitmix64_mix(seed ^ 0x5EEDF00Dull));
+  Placement best;
+  double best_d = -1.0;
+  for (int t = 0; t < 10000; ++t) {
+    const std::size_t a = fluid[rng.next() % fluid.size()], b = fluid[rng.next() % fluid.size()];
+    if (a == b) continue;
+    const double d = env::distance<3>({p.x[a], p.y[a], p.z[a]}, {p.x[b], p.y[b], p.z[b]});
+    if (d > best_d) {
+      best_d = d;
+      best = {p.id[a], p.id[b], {p.x[a], p.y[a], p.z[a]}, {p.x[b], p.y[b], p.z[b]}};
+    }
+    if (d >= 0.5 * side) break;
+  }
+  return best;
+}
+
+ReplanRecord record_of(int run, const FinishedPlan& f, const std::string& algo, double frame_dt) {
+  ReplanRecord r;
+  r.run = run;
+  r.frame = f.job.frame;
+  r.sim_time_s = static_cast<double>(f.job.frame) * frame_dt;
+  r.algorithm = algo;
+  r.solved = f.plan.status == Status::solved;
+  r.reason = std::string(plan::to_string(r.solved ? plan::FailReason::none : f.plan.reason));
+  r.plan_us = f.plan.total_us;
+  r.world_us = f.plan.world_us;
+  r.search_us = f.plan.search_us;
+  r.smooth_us = f.plan.smooth_us;
+  r.expanded = f.plan.expanded;
+  r.length = r.solved ? f.plan.length : 0.0;
+  r.waypoints = r.solved ? f.plan.path.size() : 0;
+  r.start_escaped = f.plan.start_escaped;
+  r.goal_escaped = f.plan.goal_escaped;
+  return r;
+}
+
+void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRecord>& replans,
+             const std::function<void(const FrameView&)>& on_frame) {
+  const std::uint64_t run_seed = splitmix64_mix(o.seed ^ splitmix64_mix(static_cast<std::uint64_t>(run)));
+  rec.run_number = run;
+  rec.seed = o.seed;
+  rec.algorithm = o.planner.algo;
+  rec.scenario = std::string(sph::to_string(o.scenario));
+  rec.pace = std::string(to_string(o.pace));
+
+  sph::FluidOptions fo;
+  fo.scenario = o.scenario;
+  fo.particles = o.particles;
+  fo.seed = run_seed;
+  sph::Fluid fluid(sph::make_fluid(fo), sph::make_cpu_backend());
+  rec.particle_count = fluid.state().fluid_count;
+  const double dt = fluid.state().params.frame_dt;
+  for (int f = 0; f < o.settle_frames; ++f)
+    if (const auto r = fluid.advance_frame(); !r.problem.empty()) {
+      rec.end = "fluid_unstable";
+      return;
+    }
+
+  const Placement at = place(fluid.state(), run_seed);
+  rec.start_goal_distance = env::distance<3>(at.robot, at.goal);
+  const std::uint32_t exclude[2] = {at.robot_id, at.goal_id};
+  const sph::Box3& d = fluid.state().domain;
+  const env::Aabb<3> box{{d.lo[0], d.lo[1], d.lo[2]}, {d.hi[0], d.hi[1], d.hi[2]}};
+  Robot robot(at.robot, box, o.robot);
+
+  plan::FluidPlanOptions po = o.planner;
+  po.seed = run_seed;
+  plan::FluidReplanner replanner(po);
+  PlannerThread thread(replanner);
+  std::deque<std::pair<std::uint64_t, FinishedPlan>> lockstep_queue;  // (apply at frame, plan)
+  std::vector<env::Vec<3>> previous, trail{robot.position()};
+  std::vector<double> sph_ms, snapshot_ms;
+  std::uint64_t replan_index = 0;
+  const std::size_t first_replan = replans.size();
+
+  auto apply = [&](FinishedPlan f) {
+    if (!f.error.empty()) throw RunError(f.error);
+    ReplanRecord r = record_of(run, f, o.planner.algo, dt);
+    if (r.solved) {
+      if (!previous.empty()) r.divergence = divergence(previous, f.plan.path);
+      previous = f.plan.path;
+      robot.follow(std::move(f.plan.path));
+    }
+    // A failed replan leaves the robot on its previous plan (as the seed's does).
+    replans.push_back(std::move(r));
+  };
+
+  const Stopwatch wall;
+  using Clock = std::chrono::steady_clock;
+  const auto frame_wall = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
+  env::Vec<3> goal = at.goal;
+  for (std::uint64_t frame = 0;; ++frame) {
+    const auto frame_start = Clock::now();
+    if (frame % static_cast<std::uint64_t>(o.replan_every) == 0) {
+      const Stopwatch snap_clock;
+      PlanJob job{take_snapshot(fluid.state(), exclude), robot.position(), goal, replan_index, frame};
+      snapshot_ms.push_back(snap_clock.milliseconds());
+      if (o.pace == Pace::lockstep) {
+        ++replan_index;
+        FinishedPlan f;
+        f.plan = replanner.plan(job.snapshot, job.robot, job.goal, job.replan_index);
+        f.job = std::move(job);
+        lockstep_queue.emplace_back(frame + static_cast<std::uint64_t>(o.lockstep_delay), std::move(f));
+      } else if (thread.launch(std::move(job))) {
+        ++replan_index;  // a plan still running means this launch is skipped, as in the seed
+      }
+    }
+    if (o.pace == Pace::lockstep) {
+      while (!lockstep_queue.empty() && lockstep_queue.front().first <= frame) {
+        apply(std::move(lockstep_queue.front().second));
+        lockstep_queue.pop_front();
+      }
+    } else if (auto f = thread.take()) {
+      apply(std::move(*f));
+    }
+
+    const sph::FrameReport report = fluid.advance_frame();
+    sph_ms.push_back(report.ms);
+    rec.frames = frame + 1;
+    rec.sim_time_s = static_cast<double>(frame + 1) * dt;
+    if (!report.problem.empty()) {
+      rec.end = "fluid_unstable";
+      break;
+    }
+    robot.step(dt);
+    goal = particle_position(fluid.state(), at.goal_id);
+    trail.push_back(robot.position());
+    if (on_frame) {
+      FrameView v{run, frame + 1, &fluid.state(), robot.position(), goal, &robot.path(), &trail};
+      on_frame(v);
+    }
+    if (env::distance<3>(robot.position(), goal) <= o.goal_radius) {
+      rec.success = true;
+      rec.end = "goal_reached";
+      break;
+    }
+    if (rec.sim_time_s >= o.max_sim_s - 1e-9) {
+      rec.end = "sim_time_cap";
+      break;
+    }
+    if (o.max_wall_s > 0 && wall.milliseconds() >= o.max_wall_s * 1e3) {
+      rec.end = "wall_time_cap";
+      break;
+    }
+    if (o.pace == Pace::realtime) std::this_thread::sleep_until(frame_start + frame_wall);
+  }
+  // The run is over: a plan still running is cancelled (and logged as such); finished ones that
+  // were not applied yet are logged as the replans they were.
+  thread.cancel();
+  if (auto f = thread.take()) {
+    if (!f->error.empty()) throw RunError(f->error);
+    replans.push_back(record_of(run, *f, o.planner.algo, dt));
+  }
+  for (auto& [at_frame, f] : lockstep_queue) replans.push_back(record_of(run, f, o.planner.algo, dt));
+  rec.wall_time_s = wall.milliseconds() * 1e-3;
+  rec.sph_ms_per_frame = quantile(sph_ms, 0.5);
+  rec.snapshot_ms = quantile(snapshot_ms, 0.5);
+  rec.distance_travelled = robot.travelled();
+  (void)first_replan;
+}
+
+}  // namespace
+
+SimResult run_simulation(const SimOptions& options, const std::function<void(const RunRecord&)>& on_run,
+                         const std::function<void(const FrameView&)>& on_frame) {
+  validate(options);
+  SimResult result;
+  for (int run = 1; run <= options.runs; ++run) {
+    RunRecord rec;
+    run_one(options, run, rec, result.replans, on_frame);
+    summarise_replans(rec, result.replans);
+    result.runs.push_back(rec);
+    if (on_run) on_run(rec);
+  }
+  return result;
+}
+
+}  // namespace hpcplan::sim
