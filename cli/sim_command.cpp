@@ -13,9 +13,11 @@
 #include "hpcplan/core/progress.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/io/sim_report.hpp"
+#include "hpcplan/io/vtk_fluid.hpp"
 #include "hpcplan/sim/simulator.hpp"
 #include "hpcplan/sph/presets.hpp"
 #include "number_options.hpp"
+#include "vtk_dir.hpp"
 
 namespace hpcplan::cli {
 namespace {
@@ -24,7 +26,8 @@ struct SimArgs {
   sim::SimOptions o;
   std::string scenario = "particles", pace = "lockstep";
   int threads = 0;
-  std::string csv, replan_log, trajectory, output;
+  std::string csv, replan_log, trajectory, output, vtk_dir;
+  std::uint64_t every = 5;
   bool json = false, no_timings = false;
   double memory_mb = 0.0;
 };
@@ -45,33 +48,49 @@ int run(SimArgs& a) {
                      std::to_string(need / 1048576) + " MiB for the fluid, over the budget of " +
                      std::to_string(static_cast<std::uint64_t>(budget / 1048576)) +
                      " MiB (--memory-mb)");
-  for (const auto& [path, option] : {std::pair{a.csv, "--csv"}, {a.replan_log, "--replan-log"},
-                                     {a.trajectory, "--trajectory"}, {a.output, "--output"}})
+  for (const auto& [path, option] : {std::pair{a.csv, "--csv"},
+                                     {a.replan_log, "--replan-log"},
+                                     {a.trajectory, "--trajectory"},
+                                     {a.output, "--output"}})
     if (!path.empty()) require_writable_destination(path, option);
+  if (!a.vtk_dir.empty()) prepare_vtk_dir(a.vtk_dir);
   if (a.threads > 0) omp_set_num_threads(a.threads);
 
   io::SimInvocation inv;
   inv.options = o;
   inv.threads = a.threads > 0 ? a.threads : omp_get_max_threads();
   std::vector<io::TrajectoryRow> trajectory;
-  std::function<void(const sim::FrameView&)> on_frame;
-  if (!a.trajectory.empty())
-    on_frame = [&](const sim::FrameView& v) {
+  // VTK: one series per run (DIR/run_<n>/fluid.pvd), every K-th frame and the last.
+  std::unique_ptr<io::VtkSeries> vtk;
+  int vtk_run = 0;
+  auto write_vtk = [&](const sim::FrameView& v) {
+    if (v.run != vtk_run) {
+      const std::string dir = a.vtk_dir + "/run_" + std::to_string(v.run);
+      prepare_vtk_dir(dir);
+      vtk = std::make_unique<io::VtkSeries>(dir);
+      vtk_run = v.run;
+    }
+    vtk->write(v.frame, *v.fluid, io::vtu_robot(v.robot, v.goal, *v.plan, *v.trail));
+  };
+  std::function<void(const sim::FrameView&)> on_frame = [&](const sim::FrameView& v) {
+    if (!a.trajectory.empty())
       trajectory.push_back({v.run, v.frame, v.fluid->time, v.robot, v.goal});
-    };
+    if (!a.vtk_dir.empty() && (v.frame % a.every == 0 || v.last)) write_vtk(v);
+  };
   const Stopwatch clock;
   inv.result = sim::run_simulation(
       o,
       [&](const sim::RunRecord& r) {
         if (o.runs > 1)
-          std::fprintf(stderr, "run %d/%d: %s after %.1f s simulated (%.1f s wall)\n",
-                       r.run_number, o.runs, r.end.c_str(), r.sim_time_s, r.wall_time_s);
+          std::fprintf(stderr, "run %d/%d: %s after %.1f s simulated (%.1f s wall)\n", r.run_number,
+                       o.runs, r.end.c_str(), r.sim_time_s, r.wall_time_s);
       },
       on_frame);
   inv.seconds = clock.seconds();
 
   const bool timings = !a.no_timings;
-  if (!a.csv.empty()) write_file_atomically(a.csv, io::sim_runs_csv(inv.result.runs, true, timings));
+  if (!a.csv.empty())
+    write_file_atomically(a.csv, io::sim_runs_csv(inv.result.runs, true, timings));
   if (!a.replan_log.empty())
     write_file_atomically(a.replan_log, io::sim_replans_csv(inv.result.replans, timings));
   if (!a.trajectory.empty()) write_file_atomically(a.trajectory, io::trajectory_csv(trajectory));
@@ -87,8 +106,7 @@ Action register_sim_command(CLI::App& app) {
   auto args = std::make_shared<SimArgs>();
   SimArgs& a = *args;
   sim::SimOptions& o = a.o;
-  CLI::App* cmd =
-      app.add_subcommand("sim", "Replan through the live fluid (seed 000's simulator)");
+  CLI::App* cmd = app.add_subcommand("sim", "Replan through the live fluid (seed 000's simulator)");
   add_number(cmd, "--particles", o.particles, "Fluid particles (the seed preset)", 2, 200'000'000)
       ->capture_default_str();
   cmd->add_option("--scenario", a.scenario, "particles | static | dynamic")->capture_default_str();
@@ -142,14 +160,21 @@ Action register_sim_command(CLI::App& app) {
   cmd->add_option("--csv", a.csv, "Write one row per run (seed 000's columns first)");
   cmd->add_option("--replan-log", a.replan_log, "Write one row per replan");
   cmd->add_option("--trajectory", a.trajectory, "Write the robot and goal after every frame");
-  cmd->add_flag("--no-timings", a.no_timings,
-                "Leave timing columns empty in the CSVs (lockstep runs then compare byte for byte)");
+  cmd->add_option("--vtk", a.vtk_dir,
+                  "Write VTK for ParaView: DIR/run_<n>/fluid.pvd (fluid, boxes, robot, goal, plan, "
+                  "trail)");
+  add_number(cmd, "--every", a.every, "With --vtk: every K-th frame (and the last)", 1, 100'000'000)
+      ->capture_default_str();
+  cmd->add_flag(
+      "--no-timings", a.no_timings,
+      "Leave timing columns empty in the CSVs (lockstep runs then compare byte for byte)");
   cmd->add_flag("--json", a.json, "Print the result as one JSON object");
   cmd->add_option("--output", a.output, "Also write the JSON result to this file (atomically)");
   return [args](const Context& context) {
     if (context.comm && context.comm->size() > 1)
-      throw InputError("hpcplan sim runs in one process (a frame loop and a planner thread); "
-                       "start it without mpirun");
+      throw InputError(
+          "hpcplan sim runs in one process (a frame loop and a planner thread); "
+          "start it without mpirun");
     return run(*args);
   };
 }

@@ -21,6 +21,7 @@
 #include "hpcplan/sph/presets.hpp"
 #include "hpcplan/sph/run.hpp"
 #include "number_options.hpp"
+#include "vtk_dir.hpp"
 
 namespace hpcplan::cli {
 namespace {
@@ -36,21 +37,6 @@ struct SphArgs {
   double memory_mb = 0.0;
   bool json = false;
 };
-
-// The VTK directory is created if its parent exists; anything else is bad input, found before
-// the run starts.
-void prepare_vtk_dir(const std::string& dir) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (fs::is_directory(dir, ec)) {
-    require_writable_destination(dir + "/fluid.pvd", "--vtk");
-    return;
-  }
-  if (fs::exists(dir, ec)) throw InputError("--vtk '" + dir + "' exists and is not a directory");
-  require_writable_destination(dir, "--vtk");  // its parent exists and is writable
-  if (!fs::create_directory(dir, ec))
-    throw InputError("--vtk '" + dir + "': cannot create the directory: " + ec.message());
-}
 
 int run(const SphArgs& a) {
   sph::FluidOptions o;

@@ -8,8 +8,12 @@
 
 namespace hpcplan::env {
 
-OccupancyWorld::OccupancyWorld(const FluidSnapshot& snapshot, const OccupancyConfig& config)
-    : domain_(snapshot.domain) {
+OccupancyWorld::OccupancyWorld(const FluidSnapshot& snapshot, const OccupancyConfig& config) {
+  rebuild(snapshot, config);
+}
+
+void OccupancyWorld::rebuild(const FluidSnapshot& snapshot, const OccupancyConfig& config) {
+  domain_ = snapshot.domain;
   if (!(config.cell > 0.0) || !std::isfinite(config.cell))
     throw InputError("the occupancy grid's cell must be a positive number");
   if (!(config.particle_radius >= 0.0) || !(config.box_inflation >= 0.0))
@@ -59,6 +63,7 @@ OccupancyWorld::OccupancyWorld(const FluidSnapshot& snapshot, const OccupancyCon
       for (int y = lo[1]; y <= hi[1]; ++y)
         for (int x = lo[0]; x <= hi[0]; ++x) occupied_[index({x, y, z})] = 1;
   }
+  occupied_total_ = 0;
   for (std::uint8_t o : occupied_) occupied_total_ += o;
 }
 

@@ -30,8 +30,14 @@ double distance2_to_segment(const Vec<3>& a, const Vec<3>& b, const Vec<3>& c) {
 }
 }  // namespace
 
-ParticleWorld::ParticleWorld(const FluidSnapshot& snapshot, const ParticleWorldConfig& config)
-    : domain_(snapshot.domain), radius_(config.radius), boxes_(snapshot.boxes) {
+ParticleWorld::ParticleWorld(const FluidSnapshot& snapshot, const ParticleWorldConfig& config) {
+  rebuild(snapshot, config);
+}
+
+void ParticleWorld::rebuild(const FluidSnapshot& snapshot, const ParticleWorldConfig& config) {
+  domain_ = snapshot.domain;
+  radius_ = config.radius;
+  boxes_.assign(snapshot.boxes.begin(), snapshot.boxes.end());
   if (!(radius_ >= 0.0) || !std::isfinite(radius_))
     throw InputError("the particle world's ball radius must be a number >= 0");
   // Cells at least a diameter wide (and not so small that empty cells dominate).
@@ -44,15 +50,16 @@ ParticleWorld::ParticleWorld(const FluidSnapshot& snapshot, const ParticleWorldC
     inv_cell_[k] = n_[k] / extent;
   }
   const std::size_t cells = static_cast<std::size_t>(n_[0]) * n_[1] * n_[2];
-  std::vector<std::uint32_t> keys(snapshot.particles.size());
-  for (std::size_t i = 0; i < keys.size(); ++i) {
+  keys_.resize(snapshot.particles.size());
+  for (std::size_t i = 0; i < keys_.size(); ++i) {
     const auto c = cell_of(snapshot.particles[i]);
-    keys[i] =
+    keys_[i] =
         static_cast<std::uint32_t>(c[0] + n_[0] * (c[1] + static_cast<std::size_t>(n_[1]) * c[2]));
   }
-  buckets_.build_from_keys(cells, keys);
+  buckets_.build_from_keys(cells, keys_);
   // Store the centres in cell order so a cell's balls are adjacent in memory.
-  centres_.reserve(keys.size());
+  centres_.clear();
+  centres_.reserve(keys_.size());
   for (std::uint32_t i : buckets_.all_items()) centres_.push_back(snapshot.particles[i]);
   buckets_.renumber_in_bucket_order();
 }
@@ -68,6 +75,29 @@ std::array<int, 3> ParticleWorld::cell_of(const Point& p) const {
 
 long long ParticleWorld::ball_hit(const Point& a, const Point& b) const {
   const double r2 = radius_ * radius_;
+  // Short segments (every tree edge, every point test): the cells of the segment's bounding box
+  // grown by the radius, read as contiguous x-runs of the CSR list.
+  {
+    Point lo, hi;
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(a[k], b[k]) - radius_;
+      hi[k] = std::max(a[k], b[k]) + radius_;
+    }
+    const auto c0 = cell_of(lo), c1 = cell_of(hi);
+    const std::size_t cells = static_cast<std::size_t>(c1[0] - c0[0] + 1) *
+                              static_cast<std::size_t>(c1[1] - c0[1] + 1) *
+                              static_cast<std::size_t>(c1[2] - c0[2] + 1);
+    if (cells <= 512) {
+      for (int z = c0[2]; z <= c1[2]; ++z)
+        for (int y = c0[1]; y <= c1[1]; ++y) {
+          const std::size_t row = n_[0] * (y + static_cast<std::size_t>(n_[1]) * z);
+          for (std::uint32_t i : buckets_.items_in(row + c0[0], row + c1[0]))
+            if (distance2_to_segment(a, b, centres_[i]) <= r2) return static_cast<long long>(i);
+        }
+      return -1;
+    }
+  }
+  // Long segments (the smoother's): walk the cells the segment touches.
   // Balls reach at most one cell beyond the cells the segment touches (cells >= a diameter;
   // a ball filed in a cell has its centre there). Walk the segment's cells; test each cell's
   // 27-neighbourhood once, skipping cells already tested by the previous step of the walk.

@@ -38,19 +38,17 @@ std::string sim_runs_csv(const std::vector<sim::RunRecord>& runs, bool header, b
     out += r.scenario + "," + r.algorithm + "," + std::to_string(r.run_number) + "," +
            (r.success ? "1" : "0") + "," + num(r.sim_time_s) + "," +
            std::to_string(r.total_replans) + "," + std::to_string(r.failed_replans) + "," +
-           t(r.avg_plan_time_us) + "," + t(r.min_plan_time_us) + "," + t(r.max_plan_time_us) +
-           "," + num(r.avg_path_length) + "," + num(r.avg_path_nodes) + "," +
-           num(r.avg_path_divergence) + "," + std::to_string(r.particle_count) + "," +
-           num(r.seed_avg_path_length) + "," + (r.success ? num(r.sim_time_s) : "") + "," +
-           (r.success ? t(r.wall_time_s) : "") + "," + t(r.p50_plan_time_us) + "," +
-           t(r.p95_plan_time_us) + "," + t(r.p99_plan_time_us) + "," + r.end + "," +
-           std::to_string(r.start_blocked) + "," + std::to_string(r.goal_blocked) + "," +
-           std::to_string(r.disconnected) + "," + std::to_string(r.budget) + "," +
+           t(r.avg_plan_time_us) + "," + t(r.min_plan_time_us) + "," + t(r.max_plan_time_us) + "," +
+           num(r.avg_path_length) + "," + num(r.avg_path_nodes) + "," + num(r.avg_path_divergence) +
+           "," + std::to_string(r.particle_count) + "," + num(r.seed_avg_path_length) + "," +
+           (r.success ? num(r.sim_time_s) : "") + "," + (r.success ? t(r.wall_time_s) : "") + "," +
+           t(r.p50_plan_time_us) + "," + t(r.p95_plan_time_us) + "," + t(r.p99_plan_time_us) + "," +
+           r.end + "," + std::to_string(r.start_blocked) + "," + std::to_string(r.goal_blocked) +
+           "," + std::to_string(r.disconnected) + "," + std::to_string(r.budget) + "," +
            std::to_string(r.cancelled) + "," + std::to_string(r.start_escapes) + "," +
-           std::to_string(r.goal_escapes) + "," + t(r.sph_ms_per_frame) + "," +
-           t(r.snapshot_ms) + "," + std::to_string(r.frames) + "," +
-           num(r.distance_travelled) + "," + num(r.start_goal_distance) + "," +
-           std::to_string(r.seed) + "," + r.pace + "\n";
+           std::to_string(r.goal_escapes) + "," + t(r.sph_ms_per_frame) + "," + t(r.snapshot_ms) +
+           "," + std::to_string(r.frames) + "," + num(r.distance_travelled) + "," +
+           num(r.start_goal_distance) + "," + std::to_string(r.seed) + "," + r.pace + "\n";
   }
   return out;
 }
@@ -61,11 +59,11 @@ std::string sim_replans_csv(const std::vector<sim::ReplanRecord>& replans, bool 
       "world_us,search_us,smooth_us,start_escaped,goal_escaped\n";
   auto t = [&](double v) { return timings ? num(v) : std::string(); };
   for (const sim::ReplanRecord& r : replans)
-    out += std::to_string(r.run) + "," + std::to_string(r.frame) + "," + num(r.sim_time_s) +
-           "," + r.algorithm + "," + (r.solved ? "solved" : "failed") + "," + r.reason + "," +
+    out += std::to_string(r.run) + "," + std::to_string(r.frame) + "," + num(r.sim_time_s) + "," +
+           r.algorithm + "," + (r.solved ? "solved" : "failed") + "," + r.reason + "," +
            t(r.plan_us) + "," + std::to_string(r.expanded) + "," + num(r.length) + "," +
-           std::to_string(r.waypoints) + "," + (r.divergence >= 0 ? num(r.divergence) : "") +
-           "," + t(r.world_us) + "," + t(r.search_us) + "," + t(r.smooth_us) + "," +
+           std::to_string(r.waypoints) + "," + (r.divergence >= 0 ? num(r.divergence) : "") + "," +
+           t(r.world_us) + "," + t(r.search_us) + "," + t(r.smooth_us) + "," +
            (r.start_escaped ? "1" : "0") + "," + (r.goal_escaped ? "1" : "0") + "\n";
   return out;
 }
@@ -136,7 +134,8 @@ nlohmann::json to_json(const SimInvocation& s) {
   j["aggregate"] = {
       {"runs", s.result.runs.size()},
       {"successes", successes},
-      {"success_rate", s.result.runs.empty() ? 0.0 : double(successes) / double(s.result.runs.size())},
+      {"success_rate",
+       s.result.runs.empty() ? 0.0 : double(successes) / double(s.result.runs.size())},
       {"time_to_goal_s_mean", mean(ttg)},
       {"total_replans", replans},
       {"failed_replans", failed},
@@ -159,24 +158,27 @@ std::string to_summary(const SimInvocation& s) {
   std::snprintf(line, sizeof line,
                 "hpcplan sim: %s, %s, %zu particles, %s pacing, seed %" PRIu64 ", %d thread(s)\n",
                 j["scenario"].get<std::string>().c_str(), j["algorithm"].get<std::string>().c_str(),
-                s.options.particles, j["pace"].get<std::string>().c_str(), s.options.seed, s.threads);
+                s.options.particles, j["pace"].get<std::string>().c_str(), s.options.seed,
+                s.threads);
   out += line;
-  out += "run  result        t_goal(s)  replans  failed  plan p50(ms)  p99(ms)  path len  escapes\n";
+  out +=
+      "run  result        t_goal(s)  replans  failed  plan p50(ms)  p99(ms)  path len  escapes\n";
   for (const sim::RunRecord& r : s.result.runs) {
-    std::snprintf(line, sizeof line, "%3d  %-12s  %9.2f  %7" PRIu64 "  %6" PRIu64 "  %12.3f  %7.3f  %8.2f  %7" PRIu64 "\n",
-                  r.run_number, r.end.c_str(), r.sim_time_s, r.total_replans, r.failed_replans,
-                  r.p50_plan_time_us / 1e3, r.p99_plan_time_us / 1e3, r.avg_path_length,
-                  r.start_escapes);
+    std::snprintf(
+        line, sizeof line,
+        "%3d  %-12s  %9.2f  %7" PRIu64 "  %6" PRIu64 "  %12.3f  %7.3f  %8.2f  %7" PRIu64 "\n",
+        r.run_number, r.end.c_str(), r.sim_time_s, r.total_replans, r.failed_replans,
+        r.p50_plan_time_us / 1e3, r.p99_plan_time_us / 1e3, r.avg_path_length, r.start_escapes);
     out += line;
   }
   const auto& a = j["aggregate"];
-  std::snprintf(line, sizeof line,
-                "reached the goal in %d of %zu runs; failed replans %.1f%%; plan time p50 %.3f ms, "
-                "p99 %.3f ms; fluid %.2f ms/frame (median)\n",
-                a["successes"].get<int>(), s.result.runs.size(),
-                100.0 * a["failed_replan_rate"].get<double>(),
-                a["plan_time_us_p50"].get<double>() / 1e3, a["plan_time_us_p99"].get<double>() / 1e3,
-                a["sph_ms_per_frame_median"].get<double>());
+  std::snprintf(
+      line, sizeof line,
+      "reached the goal in %d of %zu runs; failed replans %.1f%%; plan time p50 %.3f ms, "
+      "p99 %.3f ms; fluid %.2f ms/frame (median)\n",
+      a["successes"].get<int>(), s.result.runs.size(),
+      100.0 * a["failed_replan_rate"].get<double>(), a["plan_time_us_p50"].get<double>() / 1e3,
+      a["plan_time_us_p99"].get<double>() / 1e3, a["sph_ms_per_frame_median"].get<double>());
   out += line;
   return out;
 }

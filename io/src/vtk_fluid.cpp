@@ -121,26 +121,64 @@ std::string vtu_boxes(const std::vector<sph::MovingBox>& boxes) {
   return unstructured_grid(points.size() / 3, boxes.size(), cell_data, arrays, data);
 }
 
+std::string vtu_robot(const std::array<double, 3>& robot, const std::array<double, 3>& goal,
+                      const std::vector<std::array<double, 3>>& plan,
+                      const std::vector<std::array<double, 3>>& trail) {
+  std::vector<double> points;
+  std::vector<std::int64_t> connectivity, offsets, role;
+  std::vector<std::uint8_t> types;
+  auto add_cell = [&](const std::vector<std::array<double, 3>>& pts, std::uint8_t type, int r) {
+    if (pts.empty()) return;
+    for (const auto& q : pts) {
+      connectivity.push_back(static_cast<std::int64_t>(points.size() / 3));
+      points.insert(points.end(), {q[0], q[1], q[2]});
+    }
+    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+    types.push_back(type);
+    role.push_back(r);
+  };
+  add_cell({robot}, 1, 0);  // VTK_VERTEX
+  add_cell({goal}, 1, 1);
+  if (plan.size() >= 2) add_cell(plan, 4, 2);  // VTK_POLY_LINE
+  if (trail.size() >= 2) add_cell(trail, 4, 3);
+  Appended data;
+  const std::string cell_data = "<CellData Scalars=\"role\">\n" +
+                                data_array("Int64", "role", 1, data.add(role)) + "</CellData>\n";
+  const std::uint64_t pts = data.add(points);
+  const std::uint64_t conn = data.add(connectivity), offs = data.add(offsets),
+                      typ = data.add(types);
+  const std::string arrays = "<Points>\n" + data_array("Float64", "", 3, pts) + "</Points>\n" +
+                             cells_xml(data, conn, offs, typ);
+  return unstructured_grid(points.size() / 3, types.size(), cell_data, arrays, data);
+}
+
 VtkSeries::VtkSeries(std::string dir) : dir_(std::move(dir)) {
   if (!dir_.empty() && dir_.back() != '/') dir_ += '/';
 }
 
-void VtkSeries::write(std::uint64_t frame, const sph::FluidState& state) {
+void VtkSeries::write(std::uint64_t frame, const sph::FluidState& state, const std::string& robot) {
   char tag[32];
   std::snprintf(tag, sizeof tag, "%06llu", static_cast<unsigned long long>(frame));
   write_file_atomically(dir_ + "fluid_" + tag + ".vtu", vtu_particles(state));
   write_file_atomically(dir_ + "boxes_" + tag + ".vtu", vtu_boxes(state.boxes));
-  entries_.emplace_back(state.time, tag);
+  if (!robot.empty()) write_file_atomically(dir_ + "robot_" + tag + ".vtu", robot);
+  entries_.push_back({state.time, tag, !robot.empty()});
   std::string pvd =
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" "
       "byte_order=\"LittleEndian\">\n<Collection>\n";
-  for (const auto& [time, t] : entries_) {
-    char line[256];
+  for (const Entry& e : entries_) {
+    char line[384];
     std::snprintf(line, sizeof line,
                   "<DataSet timestep=\"%.9g\" part=\"0\" file=\"fluid_%s.vtu\"/>\n"
                   "<DataSet timestep=\"%.9g\" part=\"1\" file=\"boxes_%s.vtu\"/>\n",
-                  time, t.c_str(), time, t.c_str());
+                  e.time, e.tag.c_str(), e.time, e.tag.c_str());
     pvd += line;
+    if (e.robot) {
+      std::snprintf(line, sizeof line,
+                    "<DataSet timestep=\"%.9g\" part=\"2\" file=\"robot_%s.vtu\"/>\n", e.time,
+                    e.tag.c_str());
+      pvd += line;
+    }
   }
   pvd += "</Collection>\n</VTKFile>\n";
   write_file_atomically(dir_ + "fluid.pvd", pvd);

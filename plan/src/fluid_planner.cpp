@@ -11,6 +11,7 @@
 #include "hpcplan/graph/occupancy_graph.hpp"
 #include "hpcplan/plan/world_planner.hpp"
 #include "hpcplan/search/best_first.hpp"
+#include "hpcplan/search/bounded_reach.hpp"
 #include "hpcplan/search/d_star_lite.hpp"
 #include "hpcplan/search/dense_visited_map.hpp"
 #include "hpcplan/tree/rrt_star.hpp"
@@ -21,6 +22,9 @@ namespace {
 
 using Vec3 = env::Vec<3>;
 using Cell = env::OccupancyWorld::Cell;
+
+// States a pocket check may flood before giving up on finding the pocket closed (~0.3 ms).
+constexpr std::size_t kPocketBudget = 4096;
 
 bool grid_algo(std::string_view a) {
   return a == "astar" || a == "astar_euclid" || a == "dstar_lite";
@@ -160,7 +164,11 @@ FluidPlan FluidReplanner::plan(const env::FluidSnapshot& snapshot, const Vec3& r
 
   if (on_grid) {
     Stopwatch clock;
-    env::OccupancyWorld world(snapshot, o.occupancy);
+    if (grid_world_)
+      grid_world_->rebuild(snapshot, o.occupancy);
+    else
+      grid_world_ = std::make_unique<env::OccupancyWorld>(snapshot, o.occupancy);
+    const env::OccupancyWorld& world = *grid_world_;
     out.world_us = clock.milliseconds() * 1e3;
     const auto from = escape_cell(world, robot, o.escape_cells);
     const auto to = escape_cell(world, goal, o.escape_cells);
@@ -179,11 +187,23 @@ FluidPlan FluidReplanner::plan(const env::FluidSnapshot& snapshot, const Vec3& r
       const OccupancyGraph graph(world);
       const std::uint32_t s = world.index(*from), g = world.index(*to);
       std::vector<std::uint32_t> cells;
-      if (o.algo == "dstar_lite") {
+      // A pocket around either end (the moving fluid often walls one in) settles the replan
+      // with a small flood instead of an exhaustive search.
+      std::uint64_t flooded = 0;
+      const bool pocket =
+          search::bounded_reach(graph, g, s, kPocketBudget, &flooded) == search::Reach::exhausted ||
+          search::bounded_reach(graph, s, g, kPocketBudget, &flooded) == search::Reach::exhausted;
+      if (pocket) {
+        out.status = Status::no_path;
+        out.expanded = flooded;
+      } else if (o.algo == "dstar_lite") {
         Incremental& inc = *incremental_;
         const bool restart = !inc.world || inc.dstar.goal() != g;
         if (restart) {
-          inc.world.emplace(world);
+          if (inc.world)
+            *inc.world = world;  // copy into the same storage
+          else
+            inc.world.emplace(world);
           inc.dstar = search::DStarLite<OccupancyGraph, Incremental::Octile>(
               Incremental::Octile{&*inc.world});
           inc.dstar.reset(graph, s, g);
@@ -206,7 +226,7 @@ FluidPlan FluidReplanner::plan(const env::FluidSnapshot& snapshot, const Vec3& r
           }
           std::sort(touched.begin(), touched.end());
           touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-          inc.world.emplace(world);
+          *inc.world = world;
           inc.dstar.move_start(s);
           inc.dstar.edges_changed(graph, touched);
           ++inc.repairs;
@@ -270,7 +290,11 @@ FluidPlan FluidReplanner::plan(const env::FluidSnapshot& snapshot, const Vec3& r
 
   // Continuous: the particle world.
   Stopwatch clock;
-  const env::ParticleWorld world(snapshot, o.particles);
+  if (ball_world_)
+    ball_world_->rebuild(snapshot, o.particles);
+  else
+    ball_world_ = std::make_unique<env::ParticleWorld>(snapshot, o.particles);
+  const env::ParticleWorld& world = *ball_world_;
   out.world_us = clock.milliseconds() * 1e3;
   const double reach = o.escape_cells * o.occupancy.cell;
   const auto a = escape_point(world, robot, reach);

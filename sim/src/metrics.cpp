@@ -69,10 +69,14 @@ void summarise_replans(RunRecord& run, const std::vector<ReplanRecord>& replans)
     run.goal_escapes += r.goal_escaped;
     if (!r.solved) {
       ++run.failed_replans;
-      if (r.reason == "start_blocked") ++run.start_blocked;
-      else if (r.reason == "goal_blocked") ++run.goal_blocked;
-      else if (r.reason == "disconnected") ++run.disconnected;
-      else if (r.reason == "budget") ++run.budget;
+      if (r.reason == "start_blocked")
+        ++run.start_blocked;
+      else if (r.reason == "goal_blocked")
+        ++run.goal_blocked;
+      else if (r.reason == "disconnected")
+        ++run.disconnected;
+      else if (r.reason == "budget")
+        ++run.budget;
       continue;
     }
     ++solved;

@@ -20,7 +20,9 @@ Pace parse_pace(std::string_view name) {
   throw InputError("unknown --pace " + std::string(name) + " (realtime or lockstep)");
 }
 
-std::string_view to_string(Pace p) { return p == Pace::realtime ? "realtime" : "lockstep"; }
+std::string_view to_string(Pace p) {
+  return p == Pace::realtime ? "realtime" : "lockstep";
+}
 
 void validate(const SimOptions& o) {
   using sph::Scenario;
@@ -41,26 +43,20 @@ void validate(const SimOptions& o) {
   sph::FluidOptions fo;
   fo.scenario = o.scenario;
   fo.particles = o.particles;
-  sph::validate(fo);
+  if (!o.make_fluid) sph::validate(fo);
   plan::FluidReplanner check(o.planner);  // throws for an unknown planner or bad options
 }
 
-namespace {
+namespace {}  // namespace
 
-struct Placement {
-  std::uint32_t robot_id = 0, goal_id = 0;
-  env::Vec<3> robot{}, goal{};
-};
-
-// Two fluid particles at least half the box apart, drawn from the run's generator (the
-// farthest pair drawn, if 10,000 draws find none).
-Placement place(const sph::FluidState& s, std::uint64_t seed) {
+Placement place_robot_and_goal(const sph::FluidState& s, std::uint64_t seed) {
   const sph::Particles& p = s.particles;
   std::vector<std::size_t> fluid;
   for (std::size_t i = 0; i < p.size(); ++i)
     if (!p.wall[i]) fluid.push_back(i);
   // Draw by id order, not storage order, so the choice does not depend on the reordering.
-  std::sort(fluid.begin(), fluid.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
+  std::sort(fluid.begin(), fluid.end(),
+            [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
   const double side = s.domain.hi[0] - s.domain.lo[0];
   SplitMix64 rng(splitmix64_mix(seed ^ 0x5EEDF00Dull));
   Placement best;
@@ -77,6 +73,8 @@ Placement place(const sph::FluidState& s, std::uint64_t seed) {
   }
   return best;
 }
+
+namespace {
 
 ReplanRecord record_of(int run, const FinishedPlan& f, const std::string& algo, double frame_dt) {
   ReplanRecord r;
@@ -100,7 +98,8 @@ ReplanRecord record_of(int run, const FinishedPlan& f, const std::string& algo, 
 
 void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRecord>& replans,
              const std::function<void(const FrameView&)>& on_frame) {
-  const std::uint64_t run_seed = splitmix64_mix(o.seed ^ splitmix64_mix(static_cast<std::uint64_t>(run)));
+  const std::uint64_t run_seed =
+      splitmix64_mix(o.seed ^ splitmix64_mix(static_cast<std::uint64_t>(run)));
   rec.run_number = run;
   rec.seed = o.seed;
   rec.algorithm = o.planner.algo;
@@ -111,7 +110,8 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
   fo.scenario = o.scenario;
   fo.particles = o.particles;
   fo.seed = run_seed;
-  sph::Fluid fluid(sph::make_fluid(fo), sph::make_cpu_backend());
+  sph::Fluid fluid(o.make_fluid ? o.make_fluid(run_seed) : sph::make_fluid(fo),
+                   sph::make_cpu_backend());
   rec.particle_count = fluid.state().fluid_count;
   const double dt = fluid.state().params.frame_dt;
   for (int f = 0; f < o.settle_frames; ++f)
@@ -120,7 +120,14 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
       return;
     }
 
-  const Placement at = place(fluid.state(), run_seed);
+  Placement at;
+  if (o.place) {
+    const auto [robot_id, goal_id] = o.place(fluid.state());
+    at = {robot_id, goal_id, particle_position(fluid.state(), robot_id),
+          particle_position(fluid.state(), goal_id)};
+  } else {
+    at = place_robot_and_goal(fluid.state(), run_seed);
+  }
   rec.start_goal_distance = env::distance<3>(at.robot, at.goal);
   const std::uint32_t exclude[2] = {at.robot_id, at.goal_id};
   const sph::Box3& d = fluid.state().domain;
@@ -137,8 +144,10 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
   std::uint64_t replan_index = 0;
   const std::size_t first_replan = replans.size();
 
+  env::FluidSnapshot snapshot;
   auto apply = [&](FinishedPlan f) {
     if (!f.error.empty()) throw RunError(f.error);
+    if (!f.job.snapshot.particles.empty()) snapshot = std::move(f.job.snapshot);  // reuse it
     ReplanRecord r = record_of(run, f, o.planner.algo, dt);
     if (r.solved) {
       if (!previous.empty()) r.divergence = divergence(previous, f.plan.path);
@@ -151,23 +160,31 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
 
   const Stopwatch wall;
   using Clock = std::chrono::steady_clock;
-  const auto frame_wall = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
+  const auto frame_wall =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
   env::Vec<3> goal = at.goal;
   for (std::uint64_t frame = 0;; ++frame) {
     const auto frame_start = Clock::now();
     if (frame % static_cast<std::uint64_t>(o.replan_every) == 0) {
-      const Stopwatch snap_clock;
-      PlanJob job{take_snapshot(fluid.state(), exclude), robot.position(), goal, replan_index, frame};
-      snapshot_ms.push_back(snap_clock.milliseconds());
-      if (o.pace == Pace::lockstep) {
-        ++replan_index;
-        FinishedPlan f;
-        f.plan = replanner.plan(job.snapshot, job.robot, job.goal, job.replan_index);
-        f.job = std::move(job);
-        lockstep_queue.emplace_back(frame + static_cast<std::uint64_t>(o.lockstep_delay), std::move(f));
-      } else if (thread.launch(std::move(job))) {
-        ++replan_index;  // a plan still running means this launch is skipped, as in the seed
+      if (o.pace == Pace::lockstep || !thread.running()) {
+        // One snapshot buffer, reused: lockstep plans from it here; the planner thread gets it
+        // and hands it back with its plan.
+        const Stopwatch snap_clock;
+        take_snapshot(fluid.state(), exclude, snapshot);
+        snapshot_ms.push_back(snap_clock.milliseconds());
+        PlanJob job{std::move(snapshot), robot.position(), goal, replan_index++, frame};
+        if (o.pace == Pace::lockstep) {
+          FinishedPlan f;
+          f.plan = replanner.plan(job.snapshot, job.robot, job.goal, job.replan_index);
+          snapshot = std::move(job.snapshot);
+          f.job = std::move(job);
+          lockstep_queue.emplace_back(frame + static_cast<std::uint64_t>(o.lockstep_delay),
+                                      std::move(f));
+        } else {
+          thread.launch(std::move(job));  // none is running: it starts
+        }
       }
+      // (realtime: a plan still running means this replan is skipped, as in the seed.)
     }
     if (o.pace == Pace::lockstep) {
       while (!lockstep_queue.empty() && lockstep_queue.front().first <= frame) {
@@ -189,23 +206,20 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
     robot.step(dt);
     goal = particle_position(fluid.state(), at.goal_id);
     trail.push_back(robot.position());
-    if (on_frame) {
-      FrameView v{run, frame + 1, &fluid.state(), robot.position(), goal, &robot.path(), &trail};
-      on_frame(v);
-    }
     if (env::distance<3>(robot.position(), goal) <= o.goal_radius) {
       rec.success = true;
       rec.end = "goal_reached";
-      break;
-    }
-    if (rec.sim_time_s >= o.max_sim_s - 1e-9) {
+    } else if (rec.sim_time_s >= o.max_sim_s - 1e-9) {
       rec.end = "sim_time_cap";
-      break;
-    }
-    if (o.max_wall_s > 0 && wall.milliseconds() >= o.max_wall_s * 1e3) {
+    } else if (o.max_wall_s > 0 && wall.milliseconds() >= o.max_wall_s * 1e3) {
       rec.end = "wall_time_cap";
-      break;
     }
+    if (on_frame) {
+      FrameView v{run,  frame + 1,     &fluid.state(), robot.position(),
+                  goal, &robot.path(), &trail,         !rec.end.empty()};
+      on_frame(v);
+    }
+    if (!rec.end.empty()) break;
     if (o.pace == Pace::realtime) std::this_thread::sleep_until(frame_start + frame_wall);
   }
   // The run is over: a plan still running is cancelled (and logged as such); finished ones that
@@ -215,7 +229,8 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
     if (!f->error.empty()) throw RunError(f->error);
     replans.push_back(record_of(run, *f, o.planner.algo, dt));
   }
-  for (auto& [at_frame, f] : lockstep_queue) replans.push_back(record_of(run, f, o.planner.algo, dt));
+  for (auto& [at_frame, f] : lockstep_queue)
+    replans.push_back(record_of(run, f, o.planner.algo, dt));
   rec.wall_time_s = wall.milliseconds() * 1e-3;
   rec.sph_ms_per_frame = quantile(sph_ms, 0.5);
   rec.snapshot_ms = quantile(snapshot_ms, 0.5);
@@ -225,7 +240,8 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
 
 }  // namespace
 
-SimResult run_simulation(const SimOptions& options, const std::function<void(const RunRecord&)>& on_run,
+SimResult run_simulation(const SimOptions& options,
+                         const std::function<void(const RunRecord&)>& on_run,
                          const std::function<void(const FrameView&)>& on_frame) {
   validate(options);
   SimResult result;

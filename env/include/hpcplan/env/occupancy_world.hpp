@@ -38,6 +38,8 @@ class OccupancyWorld {
   // Throws InputError for a non-positive cell or negative radius/inflation, an empty domain, or
   // a grid of more than 2^31 cells.
   OccupancyWorld(const FluidSnapshot& snapshot, const OccupancyConfig& config = {});
+  // The same for another frame, reusing this world's memory.
+  void rebuild(const FluidSnapshot& snapshot, const OccupancyConfig& config = {});
 
   Aabb<3> bounds() const { return domain_; }
   bool point_free(const Point& p) const;

@@ -31,6 +31,9 @@ class ParticleWorld {
 
   // Throws InputError for a negative radius or an empty domain.
   ParticleWorld(const FluidSnapshot& snapshot, const ParticleWorldConfig& config = {});
+  // The same for another frame, reusing this world's memory (a replanner builds one world per
+  // replan; fresh allocations of a few MB would cost page faults every time).
+  void rebuild(const FluidSnapshot& snapshot, const ParticleWorldConfig& config = {});
 
   Aabb<3> bounds() const { return domain_; }
   bool point_free(const Point& p) const;
@@ -54,7 +57,8 @@ class ParticleWorld {
   double radius_ = 0.1;
   std::array<int, 3> n_{};
   Vec<3> inv_cell_{};
-  std::vector<Point> centres_;  // in cell order
+  std::vector<Point> centres_;       // in cell order
+  std::vector<std::uint32_t> keys_;  // build scratch
   CsrBuckets buckets_;
   std::vector<Aabb<3>> boxes_;
   CheckCounter checks_;

@@ -3,10 +3,14 @@
 //   fluid_<frame>.vtu   the fluid particles as vertex cells, with point data velocity (3),
 //                       density and pressure; Float64, little-endian, raw appended data;
 //   boxes_<frame>.vtu   the obstacle boxes as hexahedra (an empty grid when there are none);
-//   fluid.pvd           the series: every written frame at its time, fluid as part 0 and
-//                       boxes as part 1.
+//   robot_<frame>.vtu   (hpcplan sim) the robot and the goal as vertices, the current plan and
+//                       the robot's trail as polylines; cell data `role` (0 robot, 1 goal,
+//                       2 plan, 3 trail);
+//   fluid.pvd           the series: every written frame at its time, fluid as part 0,
+//                       boxes as part 1 and, when written, the robot as part 2.
 // Every file is written through a temporary file and a rename, the .pvd last, so a reader
 // never sees a series naming a frame that is not complete.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -17,18 +21,27 @@ namespace hpcplan::io {
 
 std::string vtu_particles(const sph::FluidState& state);
 std::string vtu_boxes(const std::vector<sph::MovingBox>& boxes);
+std::string vtu_robot(const std::array<double, 3>& robot, const std::array<double, 3>& goal,
+                      const std::vector<std::array<double, 3>>& plan,
+                      const std::vector<std::array<double, 3>>& trail);
 
 class VtkSeries {
  public:
   // `dir` must exist (the CLI checks it before a run).
   explicit VtkSeries(std::string dir);
-  // Writes frame `frame`'s two files and rewrites the .pvd.
-  void write(std::uint64_t frame, const sph::FluidState& state);
+  // Writes frame `frame`'s files (with `robot`, a vtu_robot document, when not empty) and
+  // rewrites the .pvd.
+  void write(std::uint64_t frame, const sph::FluidState& state, const std::string& robot = {});
   std::size_t frames_written() const { return entries_.size(); }
 
  private:
   std::string dir_;
-  std::vector<std::pair<double, std::string>> entries_;  // time, frame tag
+  struct Entry {
+    double time;
+    std::string tag;
+    bool robot;
+  };
+  std::vector<Entry> entries_;
 };
 
 }  // namespace hpcplan::io

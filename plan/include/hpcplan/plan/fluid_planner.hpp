@@ -97,6 +97,9 @@ class FluidReplanner {
   struct Incremental;  // D* Lite's state between replans
   FluidPlanOptions options_;
   std::unique_ptr<Incremental> incremental_;
+  // The worlds, rebuilt in place at every replan (their memory is reused, not faulted in anew).
+  std::unique_ptr<env::OccupancyWorld> grid_world_;
+  std::unique_ptr<env::ParticleWorld> ball_world_;
 };
 
 // Whether algo runs in the simulator (a sim planner or a map3d one).

@@ -21,8 +21,8 @@ struct ReplanRecord {
   double sim_time_s = 0.0;  // ... in simulated seconds
   std::string algorithm;
   bool solved = false;
-  std::string reason;  // empty when solved: start_blocked, goal_blocked, disconnected, budget,
-                       // cancelled
+  std::string reason;    // empty when solved: start_blocked, goal_blocked, disconnected, budget,
+                         // cancelled
   double plan_us = 0.0;  // the whole replan: world, search, smoothing
   double world_us = 0.0, search_us = 0.0, smooth_us = 0.0;
   std::uint64_t expanded = 0;
@@ -38,7 +38,7 @@ struct RunRecord {
   std::uint64_t seed = 0;
   std::size_t particle_count = 0;
   bool success = false;
-  std::string end;  // goal_reached, sim_time_cap, wall_time_cap, fluid_unstable
+  std::string end;           // goal_reached, sim_time_cap, wall_time_cap, fluid_unstable
   double sim_time_s = 0.0;   // simulated seconds until the goal (or the cap)
   double wall_time_s = 0.0;  // wall seconds of the replanning loop
   std::uint64_t frames = 0;
@@ -47,12 +47,12 @@ struct RunRecord {
   std::uint64_t start_escapes = 0, goal_escapes = 0;
   double avg_plan_time_us = 0.0, min_plan_time_us = 0.0, max_plan_time_us = 0.0;
   double p50_plan_time_us = 0.0, p95_plan_time_us = 0.0, p99_plan_time_us = 0.0;
-  double avg_path_length = 0.0;        // over successful replans only
-  double seed_avg_path_length = 0.0;   // the seed's: total length over all replans
-  double avg_path_nodes = 0.0;         // waypoints, successful replans
+  double avg_path_length = 0.0;       // over successful replans only
+  double seed_avg_path_length = 0.0;  // the seed's: total length over all replans
+  double avg_path_nodes = 0.0;        // waypoints, successful replans
   double avg_path_divergence = 0.0;
-  double sph_ms_per_frame = 0.0;       // median
-  double snapshot_ms = 0.0;            // median, per replan
+  double sph_ms_per_frame = 0.0;  // median
+  double snapshot_ms = 0.0;       // median, per replan
   double distance_travelled = 0.0;
   double start_goal_distance = 0.0;
 };

@@ -50,6 +50,10 @@ struct SimOptions {
   double max_wall_s = 0.0;   // wall seconds before a run is failed; 0 = none
   double goal_radius = 0.2;  // 4 particle radii of 0.05
   RobotParams robot;
+  // Scenes of one's own (tests, studies): when set, builds each run's fluid from the run's seed
+  // instead of the seed preset, and `place` (if set) picks the robot's and goal's particles.
+  std::function<sph::FluidState(std::uint64_t seed)> make_fluid;
+  std::function<std::pair<std::uint32_t, std::uint32_t>(const sph::FluidState&)> place;
 };
 
 // What the frame loop shows an observer after each frame (for VTK and pictures).
@@ -58,14 +62,23 @@ struct FrameView {
   std::uint64_t frame = 0;  // since the robot and goal were placed
   const sph::FluidState* fluid = nullptr;
   env::Vec<3> robot{}, goal{};
-  const std::vector<env::Vec<3>>* plan = nullptr;  // the path the robot follows (may be empty)
+  const std::vector<env::Vec<3>>* plan = nullptr;   // the path the robot follows (may be empty)
   const std::vector<env::Vec<3>>* trail = nullptr;  // where the robot has been
+  bool last = false;                                // the run ends after this frame
 };
 
 struct SimResult {
   std::vector<RunRecord> runs;
   std::vector<ReplanRecord> replans;
 };
+
+// The robot's and the goal's particles: two fluid particles at least half the box apart, drawn
+// by id from a generator seeded with `seed` (the farthest pair drawn if 10,000 draws find none).
+struct Placement {
+  std::uint32_t robot_id = 0, goal_id = 0;
+  env::Vec<3> robot{}, goal{};
+};
+Placement place_robot_and_goal(const sph::FluidState& state, std::uint64_t seed);
 
 // Checks the options (InputError with a one-line reason).
 void validate(const SimOptions& options);

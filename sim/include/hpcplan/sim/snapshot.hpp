@@ -13,6 +13,9 @@ namespace hpcplan::sim {
 // Fluid particles (walls excluded) whose id is not in `exclude`, and the obstacle boxes.
 env::FluidSnapshot take_snapshot(const sph::FluidState& state,
                                  std::span<const std::uint32_t> exclude);
+// The same into `into`, reusing its memory.
+void take_snapshot(const sph::FluidState& state, std::span<const std::uint32_t> exclude,
+                   env::FluidSnapshot& into);
 
 // Where the particle with this id is now (particles are reordered by cell every few substeps,
 // so its index moves); throws RunError if no particle has it.

@@ -1,0 +1,188 @@
+// The simulator end to end: a robot reaches its goal in an empty box and around a static box,
+// a sealed goal fails at the cap without hanging, lockstep runs repeat exactly, a plan still
+// running when a run ends is cancelled, the realtime hand-off works (also under ThreadSanitizer:
+// label threads), bad options are refused.
+#include <gtest/gtest.h>
+
+#include <chrono>
+
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/sim/simulator.hpp"
+#include "hpcplan/sph/presets.hpp"
+
+namespace {
+
+using namespace hpcplan;
+
+// A 5 x 5 x 5 box holding only the robot's particle (id 0) and the goal's (id 1), at rest and
+// without gravity, plus `boxes`.
+sim::SimOptions scene(const env::Vec<3>& robot, const env::Vec<3>& goal,
+                      std::vector<sph::Box3> boxes, const std::string& algo) {
+  sim::SimOptions o;
+  o.planner.algo = algo;
+  o.settle_frames = 0;
+  o.max_sim_s = 20.0;
+  o.make_fluid = [=](std::uint64_t seed) {
+    sph::FluidOptions fo;
+    fo.particles = 10;
+    fo.seed = seed;
+    sph::FluidState s = sph::make_fluid(fo);
+    s.params.gravity = {0, 0, 0};
+    s.params.agitate_every = 0;
+    s.domain = {{0, 0, 0}, {5, 5, 5}};
+    s.particles = {};
+    s.particles.add({robot[0], robot[1], robot[2]}, {0, 0, 0}, 0.0, false);
+    s.particles.add({goal[0], goal[1], goal[2]}, {0, 0, 0}, 0.0, false);
+    s.fluid_count = 2;
+    s.boxes.clear();
+    for (const sph::Box3& b : boxes) s.boxes.push_back({b, {0, 0, 0}});
+    s.grid = sph::NeighbourGrid(s.domain, s.params.support);
+    return s;
+  };
+  o.place = [](const sph::FluidState&) { return std::pair<std::uint32_t, std::uint32_t>{0, 1}; };
+  return o;
+}
+
+TEST(Simulator, ReachesTheGoalInAnEmptyBox) {
+  for (const std::string algo : {"astar", "astar_euclid", "dstar_lite", "rrtstar", "birrt"}) {
+    const sim::SimOptions o = scene({0.5, 0.5, 0.5}, {4.5, 4.5, 4.5}, {}, algo);
+    const sim::SimResult r = sim::run_simulation(o);
+    ASSERT_EQ(r.runs.size(), 1u);
+    const sim::RunRecord& run = r.runs[0];
+    EXPECT_TRUE(run.success) << algo << " " << run.end;
+    EXPECT_EQ(run.failed_replans, 0u) << algo;
+    // Straight across at 2 wu/s: sqrt(48) / 2 = 3.46 s, plus the first plan's frame of delay.
+    EXPECT_GT(run.sim_time_s, 3.3) << algo;
+    EXPECT_LT(run.sim_time_s, 4.0) << algo;
+    EXPECT_NEAR(run.avg_path_divergence, 0.0, 0.05) << algo;
+  }
+}
+
+TEST(Simulator, GoesAroundAStaticBox) {
+  const sph::Box3 wall{{1.5, 1.5, 0.0}, {3.5, 3.5, 5.0}};  // a pillar floor to ceiling
+  for (const std::string algo : {"astar", "dstar_lite", "rrtstar"}) {
+    const sim::SimOptions o = scene({0.5, 0.5, 2.5}, {4.5, 4.5, 2.5}, {wall}, algo);
+    bool inside = false;
+    const sim::SimResult r = sim::run_simulation(o, {}, [&](const sim::FrameView& v) {
+      // The grid planner's world grows boxes by 0.2, RRT*'s does not: allow the controller's
+      // corner cutting (waypoints count as passed within 0.1) for the latter.
+      const double margin = algo == "rrtstar" ? 0.1 : 0.0;
+      bool in = true;
+      for (int k = 0; k < 2; ++k)
+        in = in && v.robot[k] > wall.lo[k] + margin && v.robot[k] < wall.hi[k] - margin;
+      inside = inside || in;
+    });
+    const sim::RunRecord& run = r.runs[0];
+    EXPECT_TRUE(run.success) << algo << " " << run.end;
+    EXPECT_FALSE(inside) << algo;
+    EXPECT_GT(run.distance_travelled, std::sqrt(32.0) + 0.1) << algo;  // not straight through
+  }
+}
+
+sim::SimOptions sealed(const std::string& algo) {
+  // The goal inside a closed shell of boxes.
+  const double lo = 3.0, hi = 4.4, t = 0.1;
+  return scene({0.5, 0.5, 0.5}, {3.7, 3.7, 3.7},
+               {{{lo, lo, lo}, {hi, hi, lo + t}},
+                {{lo, lo, hi - t}, {hi, hi, hi}},
+                {{lo, lo, lo}, {hi, lo + t, hi}},
+                {{lo, hi - t, lo}, {hi, hi, hi}},
+                {{lo, lo, lo}, {lo + t, hi, hi}},
+                {{hi - t, lo, lo}, {hi, hi, hi}}},
+               algo);
+}
+
+TEST(Simulator, ASealedGoalFailsAtTheCapWithoutHanging) {
+  for (const std::string algo : {"astar", "dstar_lite", "rrtstar"}) {
+    sim::SimOptions o = sealed(algo);
+    o.max_sim_s = 3.0;
+    const sim::SimResult r = sim::run_simulation(o);
+    const sim::RunRecord& run = r.runs[0];
+    EXPECT_FALSE(run.success) << algo;
+    EXPECT_EQ(run.end, "sim_time_cap") << algo;
+    EXPECT_EQ(run.frames, 150u) << algo;
+    EXPECT_GE(run.total_replans, 14u) << algo;
+    EXPECT_EQ(run.failed_replans, run.total_replans) << algo;
+    EXPECT_EQ(run.disconnected + run.budget, run.failed_replans) << algo;
+  }
+}
+
+TEST(Simulator, LockstepRunsRepeatExactly) {
+  for (const std::string algo : {"astar", "rrtstar", "dstar_lite"}) {
+    sim::SimOptions o;
+    o.scenario = sph::Scenario::dynamic_boxes;
+    o.particles = 1500;
+    o.runs = 2;
+    o.seed = 7;
+    o.max_sim_s = 8.0;
+    o.settle_frames = 20;
+    o.planner.algo = algo;
+    std::vector<std::vector<double>> traces(2);
+    sim::SimResult results[2];
+    for (int k = 0; k < 2; ++k)
+      results[k] = sim::run_simulation(o, {}, [&](const sim::FrameView& v) {
+        traces[k].insert(traces[k].end(), {v.robot[0], v.robot[1], v.robot[2], v.goal[0]});
+      });
+    EXPECT_EQ(traces[0], traces[1]) << algo;
+    ASSERT_EQ(results[0].replans.size(), results[1].replans.size()) << algo;
+    for (std::size_t i = 0; i < results[0].replans.size(); ++i) {
+      const auto &a = results[0].replans[i], &b = results[1].replans[i];
+      EXPECT_EQ(a.frame, b.frame);
+      EXPECT_EQ(a.solved, b.solved);
+      EXPECT_EQ(a.reason, b.reason);
+      EXPECT_EQ(a.expanded, b.expanded);
+      EXPECT_EQ(a.length, b.length);
+      EXPECT_EQ(a.divergence, b.divergence);
+    }
+    EXPECT_GT(results[0].replans.size(), 10u);
+  }
+}
+
+TEST(SimulatorThreads, RealtimeHandOffReachesTheGoal) {
+  sim::SimOptions o = scene({0.5, 0.5, 0.5}, {2.5, 2.5, 2.5}, {}, "astar");
+  o.pace = sim::Pace::realtime;
+  const auto t0 = std::chrono::steady_clock::now();
+  const sim::SimResult r = sim::run_simulation(o);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const sim::RunRecord& run = r.runs[0];
+  EXPECT_TRUE(run.success) << run.end;
+  EXPECT_GT(run.total_replans, 0u);
+  // Paced: a frame takes at least its 0.02 s of wall time.
+  EXPECT_GE(wall, run.sim_time_s * 0.95);
+}
+
+TEST(SimulatorThreads, ARunningPlanIsCancelledWhenTheRunEnds) {
+  sim::SimOptions o = sealed("rrtstar");
+  o.planner.iterations = 4'000'000'000ull;  // would run for hours
+  o.pace = sim::Pace::realtime;
+  o.max_sim_s = 0.3;
+  const auto t0 = std::chrono::steady_clock::now();
+  const sim::SimResult r = sim::run_simulation(o);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_LT(wall, 20.0);
+  const sim::RunRecord& run = r.runs[0];
+  EXPECT_FALSE(run.success);
+  EXPECT_EQ(run.cancelled, 1u);
+  EXPECT_EQ(run.total_replans, 0u);  // the one plan never finished
+  ASSERT_EQ(r.replans.size(), 1u);
+  EXPECT_EQ(r.replans[0].reason, "cancelled");
+}
+
+TEST(Simulator, RefusesBadOptions) {
+  auto bad = [](auto change) {
+    sim::SimOptions o;
+    change(o);
+    EXPECT_THROW(sim::validate(o), InputError);
+  };
+  bad([](sim::SimOptions& o) { o.particles = 1; });
+  bad([](sim::SimOptions& o) { o.runs = 0; });
+  bad([](sim::SimOptions& o) { o.replan_every = 0; });
+  bad([](sim::SimOptions& o) { o.max_sim_s = 0; });
+  bad([](sim::SimOptions& o) { o.max_wall_s = -1; });
+  bad([](sim::SimOptions& o) { o.scenario = sph::Scenario::tank; });
+  bad([](sim::SimOptions& o) { o.planner.algo = "nosuch"; });
+  bad([](sim::SimOptions& o) { o.planner.goal_bias = 2; });
+  EXPECT_THROW(sim::parse_pace("fast"), InputError);
+}
+
+}  // namespace

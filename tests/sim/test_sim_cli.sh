@@ -1,0 +1,122 @@
+#!/usr/bin/env bash
+# hpcplan sim end to end: the JSON summary, the per-run CSV (seed 000's 14 columns first), the
+# per-replan log, byte-identical lockstep runs, VTK with the robot read back by VTK's readers,
+# a realtime run, bad input (one line, exit 2, nothing written).
+set -uo pipefail
+bin=$1
+py=/usr/bin/python3
+[[ -x $py ]] || py=python3
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+fail() { echo "sim_cli: FAIL: $*" >&2; exit 1; }
+
+common=(--particles 1000 --scenario dynamic --runs 2 --seed 3 --threads 2 --settle-frames 40
+        --max-sim-s 12)
+for k in 1 2; do
+  "$bin" sim "${common[@]}" --algo rrtstar --csv "$dir/runs$k.csv" --replan-log "$dir/replans$k.csv" \
+    --trajectory "$dir/traj$k.csv" --no-timings --json --output "$dir/out$k.json" > "$dir/stdout$k.json" ||
+    fail "lockstep run $k failed"
+done
+cmp -s "$dir/stdout1.json" "$dir/out1.json" || fail "--output differs from stdout"
+for f in runs replans traj; do
+  cmp -s "$dir/${f}1.csv" "$dir/${f}2.csv" || fail "lockstep $f.csv differs between identical runs"
+done
+python3 - "$dir" <<'PY' || exit 1
+import csv, json, sys
+d = sys.argv[1]
+j = json.load(open(f"{d}/out1.json"))
+for k in ["scenario", "algorithm", "particles", "pace", "seed", "threads", "runs", "aggregate"]:
+    assert k in j, k
+assert j["algorithm"] == "rrtstar" and j["pace"] == "lockstep" and len(j["runs"]) == 2, j
+a = j["aggregate"]
+for k in ["success_rate", "failed_replan_rate", "plan_time_us_p50", "plan_time_us_p99",
+          "total_replans", "sph_ms_per_frame_median"]:
+    assert k in a, k
+rows = list(csv.reader(open(f"{d}/runs1.csv")))
+seed = ["scenario", "algorithm", "run_number", "success", "time_to_goal_s", "total_replans",
+        "failed_replans", "avg_plan_time_us", "min_plan_time_us", "max_plan_time_us",
+        "avg_path_length", "avg_path_nodes", "avg_path_divergence", "particle_count"]
+assert rows[0][:14] == seed, rows[0][:14]
+assert len(rows) == 3, len(rows)
+h = rows[0]
+for r in rows[1:]:
+    row = dict(zip(h, r))
+    assert row["scenario"] == "dynamic" and row["particle_count"] == "1000", row
+    assert int(row["total_replans"]) >= int(row["failed_replans"]) >= 0, row
+    assert row["avg_plan_time_us"] == "", "--no-timings leaves timings empty"
+    assert row["pace"] == "lockstep" and row["seed"] == "3", row
+    assert row["end"] in ("goal_reached", "sim_time_cap"), row
+    assert (row["end"] == "goal_reached") == (row["success"] == "1"), row
+rep = list(csv.reader(open(f"{d}/replans1.csv")))
+assert rep[0][:11] == ["run", "frame", "sim_time_s", "algorithm", "status", "reason", "plan_us",
+                       "expanded", "length", "waypoints", "divergence"], rep[0]
+total = sum(int(dict(zip(h, r))["total_replans"]) for r in rows[1:])
+assert len([r for r in rep[1:] if r[5] != "cancelled"]) == total, (len(rep), total)
+for r in rep[1:]:
+    assert r[4] in ("solved", "failed") and (r[4] == "solved") == (r[5] == ""), r
+print("sim_cli: lockstep, json and csv ok")
+PY
+
+# VTK with the robot: read back by VTK's own readers.
+"$bin" sim --particles 600 --scenario static --algo astar --max-sim-s 2 --settle-frames 5 \
+  --vtk "$dir/vtk" --every 20 > /dev/null || fail "vtk run failed"
+"$py" - "$dir/vtk/run_1" <<'PY' || exit 1
+import os, sys, xml.etree.ElementTree as ET
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+d = sys.argv[1]
+sets = ET.parse(os.path.join(d, "fluid.pvd")).getroot().find("Collection").findall("DataSet")
+robots = [s.get("file") for s in sets if s.get("part") == "2"]
+assert robots and robots[0] == "robot_000020.vtu", robots
+for name in robots:
+    r = vtk.vtkXMLUnstructuredGridReader()
+    r.SetFileName(os.path.join(d, name))
+    r.Update()
+    g = r.GetOutput()
+    roles = list(vtk_to_numpy(g.GetCellData().GetArray("role")))
+    assert roles[:2] == [0, 1], roles          # robot, goal
+    types = [g.GetCellType(i) for i in range(g.GetNumberOfCells())]
+    assert types[:2] == [1, 1] and all(t == 4 for t in types[2:]), types
+    assert 3 in roles, "the trail is a polyline"
+print("sim_cli: vtk ok")
+PY
+
+# Realtime: frames are paced to 0.02 s of wall time.
+start=$(date +%s.%N)
+"$bin" sim --particles 500 --algo astar --pace realtime --max-sim-s 1 --settle-frames 0 --json \
+  > "$dir/rt.json" || fail "realtime run failed"
+python3 - "$dir/rt.json" "$start" <<'PY' || exit 1
+import json, sys, time
+j = json.load(open(sys.argv[1]))
+assert j["pace"] == "realtime", j
+r = j["runs"][0]
+assert r["wall_time_s"] >= 0.95 * r["time_to_goal_s"], r
+print("sim_cli: realtime ok")
+PY
+
+# Bad input: one line on stderr, exit 2, no file written.
+bad() {
+  local expect=$1; shift
+  rm -f "$dir/bad.csv"
+  "$bin" sim "$@" --csv "$dir/bad.csv" > /dev/null 2> "$dir/err"
+  local rc=$?
+  [[ $rc -eq 2 ]] || fail "'$*' exited $rc, not 2"
+  [[ $(wc -l < "$dir/err") -eq 1 ]] || fail "'$*' printed more than one line: $(cat "$dir/err")"
+  grep -q -- "$expect" "$dir/err" || fail "'$*' did not mention '$expect': $(cat "$dir/err")"
+  [[ ! -e $dir/bad.csv ]] || fail "'$*' wrote its CSV"
+}
+bad "particles" --particles 1
+bad "scenario" --scenario tank
+bad "scenario" --scenario nosuch
+bad "planner" --algo nosuch
+bad "pace" --pace fast
+bad "replan-every" --replan-every 0
+bad "max-sim-s" --max-sim-s 0
+bad "max-wall-s" --max-wall-s -1
+bad "goal-bias" --goal-bias 2
+bad "memory" --particles 100000000 --memory-mb 16
+bad "vtk" --vtk "$dir/bad.csv/x"
+rm -f "$dir/bad.csv"
+"$bin" sim --particles 500 --replan-log /nonexistent/dir/log.csv > /dev/null 2> "$dir/err"
+[[ $? -eq 2 ]] || fail "unwritable --replan-log is not exit 2"
+echo "sim_cli: all ok"
