@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""Renders an `hpcplan sph --vtk DIR` run, headless: one PNG per written frame (particles
-coloured by speed, obstacle boxes as wireframes) and an animation, MP4 through ffmpeg when it
-is installed, else an animated GIF.
+"""Renders an `hpcplan sph --vtk DIR` or `hpcplan sim --vtk DIR` run (DIR/run_<n> for the
+latter), headless: one PNG per written frame (particles coloured by speed, obstacle boxes as
+wireframes; for a simulator run also the robot, the goal, the plan it follows and its trail)
+and an animation, MP4 through ffmpeg when it is installed, else an animated GIF.
 
 Usage: render_sph.py DIR [--out OUT_PREFIX] [--fps 10] [--max-points 200000] [--gif]
 Reads DIR/fluid.pvd and the .vtu files it names with VTK's own reader (python3-vtk9).
@@ -40,6 +41,25 @@ def box_edges(g):
             yield pts[ids[a]], pts[ids[b]]
 
 
+def draw_robot(ax, g):
+    """robot_*.vtu: cells with role 0 robot, 1 goal (vertices), 2 plan, 3 trail (polylines)."""
+    pts = vtk_to_numpy(g.GetPoints().GetData())
+    roles = vtk_to_numpy(g.GetCellData().GetArray("role"))
+    style = {0: dict(color="lime", marker="o", s=160, edgecolors="black", label="robot"),
+             1: dict(color="red", marker="*", s=260, edgecolors="black", label="goal"),
+             2: dict(color="darkorange", lw=3, label="plan"),
+             3: dict(color="black", lw=1.5, ls="--", label="trail")}
+    for c in range(g.GetNumberOfCells()):
+        cell = g.GetCell(c)
+        xyz = pts[[cell.GetPointId(k) for k in range(cell.GetNumberOfPoints())]]
+        st = style[int(roles[c])]
+        if roles[c] <= 1:
+            ax.scatter(*xyz.T, depthshade=False, zorder=5, **st)
+        else:
+            ax.plot(*xyz.T, zorder=4, **st)
+    ax.legend(loc="upper left", fontsize=7)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("dir")
@@ -54,6 +74,7 @@ def main():
     sets = ET.parse(pvd).getroot().find("Collection").findall("DataSet")
     frames = [(float(s.get("timestep")), s.get("file")) for s in sets if s.get("part") == "0"]
     boxes = {float(s.get("timestep")): s.get("file") for s in sets if s.get("part") == "1"}
+    robots = {float(s.get("timestep")): s.get("file") for s in sets if s.get("part") == "2"}
     prefix = a.out or os.path.join(a.dir, "render")
     first = read(os.path.join(a.dir, frames[0][1]))
     lo, hi = np.array(first.GetBounds()[0::2]), np.array(first.GetBounds()[1::2])
@@ -72,11 +93,15 @@ def main():
         speed = np.linalg.norm(v, axis=1)
         fig = plt.figure(figsize=(6, 6))
         ax = fig.add_subplot(projection="3d")
+        # With a robot on stage the fluid steps back (faint) so the robot, goal and plan show.
         sc = ax.scatter(x[:, 0], x[:, 1], x[:, 2], c=speed, s=1.5, cmap="viridis", vmin=0,
-                        vmax=max(1e-9, np.percentile(speed, 99)), depthshade=False)
+                        vmax=max(1e-9, np.percentile(speed, 99)), depthshade=False,
+                        alpha=0.25 if t in robots else 1.0)
         if t in boxes:
             for p, q in box_edges(read(os.path.join(a.dir, boxes[t]))):
                 ax.plot(*zip(p, q), color="tab:red", lw=1)
+        if t in robots:
+            draw_robot(ax, read(os.path.join(a.dir, robots[t])))
         ax.set_xlim(lo[0], hi[0]); ax.set_ylim(lo[1], hi[1]); ax.set_zlim(lo[2], hi[2])
         ax.set_box_aspect(hi - lo)
         ax.set_title(f"t = {t:.2f} s, {len(x)} particles")

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The whole test suite: install, build, run every test; then the unit, CLI, OMPL, MPI and fluid suites
-# again under AddressSanitizer + UndefinedBehaviorSanitizer, and the threaded tests (stop
-# token, cancellation, planners sharing a world) under ThreadSanitizer.
+# The whole test suite: install, build, run every test; then the unit, CLI, OMPL, MPI, fluid and
+# simulator suites again under AddressSanitizer + UndefinedBehaviorSanitizer, and the threaded
+# tests (stop token, cancellation, planners sharing a world, the simulator's planner thread)
+# under ThreadSanitizer.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -21,11 +22,11 @@ bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 echo "== tests (ASan + UBSan)"
 # (The MPI suites run without leak checks: tests/mpi/CMakeLists.txt says why.)
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-(cd build-asan && ctest_run --timeout 900 -L "unit|cli|ompl|mpi|sph")
+(cd build-asan && ctest_run --timeout 900 -L "unit|cli|ompl|mpi|sph|sim")
 
 echo "== build (ThreadSanitizer: threaded tests)"
 bash scripts/build.sh build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHPCPLAN_SANITIZE=thread \
-  -DHPCPLAN_BUILD_BENCH=OFF -DHPCPLAN_BUILD_CLI=OFF --target hpcplan_unit_tests
+  -DHPCPLAN_BUILD_BENCH=OFF -DHPCPLAN_BUILD_CLI=OFF --target hpcplan_unit_tests --target hpcplan_sim_tests
 echo "== tests (ThreadSanitizer)"
 export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1
 (cd build-tsan && ctest_run --timeout 900 -L threads)

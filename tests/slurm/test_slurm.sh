@@ -82,7 +82,38 @@ python3 "$root/scripts/scaling_report.py" "$work/results" > "$work/report.md" ||
 grep -q "strong scaling — 3D extent 40" "$work/report.md" && grep -q "weak scaling — 3D" \
   "$work/report.md" && grep -q "Table IV" "$work/report.md" || fail "report incomplete: $(cat "$work/report.md")"
 
-# 8. submit.sh: clear errors for a missing binary and when no controller answers.
+# 8. Seed 000's sweep as a job array (4 cells: 500 particles, 2 scenarios, 2 planners), all tasks
+# writing into one folder, then its tables and figures; a resubmission skips every cell.
+sweep() {  # submit with the small sweep's settings in the job's environment
+  PARTICLES=500 SCENARIOS="particles dynamic" ALGOS="astar rrtstar" TRIALS=1 PACE=lockstep \
+    MAX_SIM_S=20 THREADS=1 submit "$@"
+}
+jid=$(sweep sim sim_sweep.sbatch --array 0-3 --cpus-per-task 1) ||
+  fail "sim sweep array failed"
+sweep=$work/results/sim/$jid
+[[ $(ls "$sweep"/cells/*_*_500.csv 2>/dev/null | grep -vc replans) -eq 4 ]] ||
+  fail "sim sweep cells missing: $(ls "$sweep/cells" 2>&1)"
+/usr/bin/python3 "$root/scripts/sim_report.py" "$sweep" --out "$work/simreport" > "$work/sim.md" ||
+  fail "sim_report failed"
+grep -q "Table II" "$work/sim.md" && grep -q "Table III" "$work/sim.md" &&
+  grep -q "Table IV" "$work/sim.md" && [[ -f $work/simreport/fig3_scaling.png ]] ||
+  fail "sim report incomplete: $(cat "$work/sim.md")"
+# Resuming (locally, same settings): every cell is already there, nothing is rerun; a cell
+# beyond the settings' grid is refused with a clear message.
+touch "$work/marker"
+sleep 1
+PARTICLES=500 SCENARIOS="particles dynamic" ALGOS="astar rrtstar" TRIALS=1 PACE=lockstep \
+  BIN=$bins/hpcplan bash "$root/bench/sim_sweep.sh" "$sweep" 2> "$work/resume.txt" ||
+  fail "resuming the sweep failed"
+[[ $(grep -c "already done" "$work/resume.txt") -eq 4 ]] || fail "resume did not skip: $(cat "$work/resume.txt")"
+[[ -z $(find "$sweep/cells" -newer "$work/marker" -type f) ]] || fail "the resumed sweep reran cells"
+if PARTICLES=500 SCENARIOS="particles dynamic" ALGOS="astar rrtstar" \
+  bash "$root/bench/sim_sweep.sh" --cell 4 "$sweep" 2> "$work/err.txt"; then
+  fail "a cell beyond the sweep's grid was accepted"
+fi
+grep -q "cell 4 is not in 0..3" "$work/err.txt" || fail "unclear error for a cell beyond the grid"
+
+# 9. submit.sh: clear errors for a missing binary and when no controller answers.
 if HPCPLAN_BIN_DIR=$work/nowhere bash "$root/slurm/submit.sh" smoke > /dev/null 2> "$work/err.txt"; then
   fail "submit.sh accepted a missing binary"
 fi

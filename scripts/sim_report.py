@@ -1,0 +1,265 @@
+#!/usr/bin/python3
+"""Seed 000's tables and figures from `hpcplan sim` results (bench/sim_sweep.sh folders, SLURM
+sweep folders, or single CSVs), as Markdown and PNG.
+
+Usage: sim_report.py RESULT [RESULT ...] [--out DIR]
+RESULT: a folder (its */*.csv and *.csv per-run files, with the matching *.replans.csv logs) or
+a per-run CSV. Writes DIR/sim_report.md and DIR/fig{1,2,3,4}_*.png (DIR default: the first
+folder) and prints the Markdown.
+
+Tables (the paper's numbering):
+  II   time to goal by scenario (successful runs; mean +- sd), and the success rate
+  III  planning time per replan call: mean (the paper's figure), p50, p99; failed replan rate
+  IV   path length over successful replans, the paper's failure-weighted length, divergence
+Figures: 1 time-to-goal distributions, 2 plan-time distributions, 3 scaling with particle
+count (time to goal, mean plan time, failed replan rate), 4 the winner of each metric.
+"""
+import argparse
+import csv
+import glob
+import math
+import os
+import statistics
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+SCENARIOS = ["particles", "static", "dynamic"]
+NAMES = {"particles": "Particles Only", "static": "Static Obstacles", "dynamic": "Dynamic Obstacles"}
+LABEL = {"astar": "A*", "astar_euclid": "A* (Euclid)", "dstar_lite": "D* Lite", "rrtstar": "RRT*"}
+
+
+def run_files(paths):
+    for p in paths:
+        if os.path.isdir(p):
+            found = sorted(set(glob.glob(os.path.join(p, "**", "*.csv"), recursive=True)))
+            for f in found:
+                if not f.endswith(".replans.csv"):
+                    yield f
+        elif p.endswith(".csv"):
+            yield p
+        else:
+            sys.exit(f"sim_report: error: {p} is neither a folder nor a CSV")
+
+
+def load(paths):
+    runs, replans = [], []
+    for f in run_files(paths):
+        with open(f) as fh:
+            rows = list(csv.DictReader(fh))
+        if not rows or "time_to_goal_s" not in rows[0]:
+            continue  # another kind of CSV in the folder
+        runs += rows
+        log = f[:-4] + ".replans.csv"
+        if os.path.exists(log):
+            with open(log) as fh:
+                rp = list(csv.DictReader(fh))
+            sc = rows[0]["scenario"]
+            n = rows[0]["particle_count"]
+            for r in rp:
+                r["scenario"], r["particle_count"] = sc, n
+            replans += rp
+    if not runs:
+        sys.exit("sim_report: error: no per-run CSV of hpcplan sim found")
+    return runs, replans
+
+
+def f(x):
+    return float(x) if x not in ("", None) else math.nan
+
+
+def mean_sd(xs):
+    xs = [x for x in xs if not math.isnan(x)]
+    if not xs:
+        return math.nan, math.nan
+    return statistics.fmean(xs), statistics.stdev(xs) if len(xs) > 1 else 0.0
+
+
+def quantile(xs, q):
+    xs = sorted(x for x in xs if not math.isnan(x))
+    if not xs:
+        return math.nan
+    pos = q * (len(xs) - 1)
+    i = int(pos)
+    return xs[i] + (pos - i) * (xs[min(i + 1, len(xs) - 1)] - xs[i])
+
+
+def fmt(x, d=2):
+    return "–" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.{d}f}"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("results", nargs="+")
+    ap.add_argument("--out", default=None)
+    a = ap.parse_args()
+    runs, replans = load(a.results)
+    out = a.out or (a.results[0] if os.path.isdir(a.results[0]) else os.path.dirname(a.results[0]) or ".")
+    os.makedirs(out, exist_ok=True)
+    algos = sorted({r["algorithm"] for r in runs}, key=lambda x: list(LABEL).index(x) if x in LABEL else 99)
+    scenarios = [s for s in SCENARIOS if any(r["scenario"] == s for r in runs)]
+    counts = sorted({int(r["particle_count"]) for r in runs})
+    by = defaultdict(list)
+    for r in runs:
+        by[(r["scenario"], r["algorithm"])].append(r)
+    plans = defaultdict(list)
+    for r in replans:
+        if r.get("reason") != "cancelled":
+            plans[(r["scenario"], r["algorithm"])].append(r)
+    lab = lambda x: LABEL.get(x, x)  # noqa: E731
+    md = []
+    paces = sorted({r["pace"] for r in runs})
+    md.append(f"# hpcplan sim: seed 000's tables\n\n{len(runs)} runs ({', '.join(paces)} pacing), "
+              f"particle counts {', '.join(map(str, counts))}; planners {', '.join(map(lab, algos))}. "
+              "Failed runs (the cap reached) count in the success rate, never in time-to-goal means.\n")
+
+    # Table II
+    ref = algos[0]
+    md.append("## Table II: time to goal by scenario (s, successful runs, mean ± sd)\n")
+    head = "| Scenario | " + " | ".join(f"{lab(x)}" for x in algos) + " | " + \
+        " | ".join(f"{lab(ref)} / {lab(x)}" for x in algos[1:]) + " | success rate |"
+    md.append(head)
+    md.append("|" + "---|" * (2 + 2 * len(algos) - 1))
+    ttg = {}
+    for s in scenarios:
+        cells, rates = [], []
+        for x in algos:
+            rs = by[(s, x)]
+            m, sd = mean_sd([f(r["time_to_goal_s"]) for r in rs if r["success"] == "1"])
+            ttg[(s, x)] = m
+            cells.append(f"{fmt(m)} ± {fmt(sd)}")
+            rates.append(f"{lab(x)} {sum(r['success'] == '1' for r in rs)}/{len(rs)}")
+        ratios = [f"{fmt(ttg[(s, ref)] / ttg[(s, x)])}×" if ttg[(s, x)] else "–" for x in algos[1:]]
+        md.append(f"| {NAMES[s]} | " + " | ".join(cells) + " | " + " | ".join(ratios) + f" | {', '.join(rates)} |")
+
+    # Table III
+    md.append("\n## Table III: planning time per replan call (ms; mean, p50, p99) and failed replans\n")
+    md.append("| Scenario | " + " | ".join(f"{lab(x)} mean / p50 / p99" for x in algos) + " | " +
+              " | ".join(f"{lab(x)} failed" for x in algos) + " |")
+    md.append("|" + "---|" * (1 + 2 * len(algos)))
+    plan_mean = {}
+    fail_rate = {}
+    for s in scenarios:
+        cells, fails = [], []
+        for x in algos:
+            ps = plans[(s, x)]
+            t = [f(p["plan_us"]) / 1e3 for p in ps]
+            plan_mean[(s, x)] = statistics.fmean(t) if t else math.nan
+            cells.append(f"{fmt(plan_mean[(s, x)], 3)} / {fmt(quantile(t, .5), 3)} / {fmt(quantile(t, .99), 3)}")
+            nfail = sum(p["status"] != "solved" for p in ps)
+            fail_rate[(s, x)] = nfail / len(ps) if ps else math.nan
+            fails.append(f"{fmt(100 * fail_rate[(s, x)], 1)}%")
+        md.append(f"| {NAMES[s]} | " + " | ".join(cells) + " | " + " | ".join(fails) + " |")
+    md.append("\nThe paper's Table III (its published code, A* and RRT*, successful runs only, "
+              "placeholder replans before the robot exists included): Particles Only 466.2 / 40.6 ms, "
+              "Static 569.9 / 47.9 ms, Dynamic 1159.3 / 47.8 ms.\n")
+    reasons = defaultdict(lambda: defaultdict(int))
+    for (s, x), ps in plans.items():
+        for p in ps:
+            if p["status"] != "solved":
+                reasons[x][p["reason"]] += 1
+    if reasons:
+        md.append("Why replans failed (all scenarios): " + "; ".join(
+            f"{lab(x)}: " + ", ".join(f"{k} {v}" for k, v in sorted(reasons[x].items())) for x in algos if reasons[x]) + ".\n")
+
+    # Table IV
+    md.append("## Table IV: path length and divergence by scenario\n")
+    md.append("| Scenario | " + " | ".join(f"{lab(x)} len" for x in algos) + " | " +
+              " | ".join(f"{lab(x)} len (paper's weighting)" for x in algos) + " | " +
+              " | ".join(f"{lab(x)} div" for x in algos) + " |")
+    md.append("|" + "---|" * (1 + 3 * len(algos)))
+    length, div = {}, {}
+    for s in scenarios:
+        a1, a2, a3 = [], [], []
+        for x in algos:
+            ps = plans[(s, x)]
+            ok = [f(p["length"]) for p in ps if p["status"] == "solved"]
+            length[(s, x)] = statistics.fmean(ok) if ok else math.nan
+            weighted = sum(ok) / len(ps) if ps else math.nan
+            d = [f(p["divergence"]) for p in ps if p["status"] == "solved" and p["divergence"] != ""]
+            div[(s, x)] = statistics.fmean(d) if d else math.nan
+            a1.append(fmt(length[(s, x)], 3)); a2.append(fmt(weighted, 3)); a3.append(fmt(div[(s, x)], 3))
+        md.append(f"| {NAMES[s]} | " + " | ".join(a1 + a2 + a3) + " |")
+
+    colours = {x: c for x, c in zip(algos, ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple"])}
+    # Figure 1 and 2: distributions per scenario.
+    for name, values, ylabel, log in (
+            ("fig1_time_to_goal.png", lambda s, x: [f(r["time_to_goal_s"]) for r in by[(s, x)] if r["success"] == "1"], "time to goal (s)", False),
+            ("fig2_plan_time.png", lambda s, x: [f(p["plan_us"]) / 1e3 for p in plans[(s, x)]], "plan time per replan (ms)", True)):
+        fig, axes = plt.subplots(1, len(scenarios), figsize=(4 * len(scenarios), 4), squeeze=False)
+        for ax, s in zip(axes[0], scenarios):
+            data = [values(s, x) or [math.nan] for x in algos]
+            bp = ax.boxplot(data, labels=[lab(x) for x in algos], patch_artist=True)
+            for patch, x in zip(bp["boxes"], algos):
+                patch.set_facecolor(colours[x])
+            ax.set_title(NAMES[s])
+            ax.set_ylabel(ylabel)
+            if log:
+                ax.set_yscale("log")
+        fig.tight_layout()
+        fig.savefig(os.path.join(out, name), dpi=100)
+        plt.close(fig)
+    # Figure 3: scaling with particle count.
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4))
+    for x in algos:
+        for s in scenarios:
+            style = {"particles": "-", "static": "--", "dynamic": ":"}[s]
+            t, p, fr = [], [], []
+            for n in counts:
+                rs = [r for r in by[(s, x)] if int(r["particle_count"]) == n]
+                ok = [f(r["time_to_goal_s"]) for r in rs if r["success"] == "1"]
+                t.append(statistics.fmean(ok) if ok else math.nan)
+                ps = [q for q in plans[(s, x)] if int(q["particle_count"]) == n]
+                p.append(statistics.fmean(f(q["plan_us"]) / 1e3 for q in ps) if ps else math.nan)
+                fr.append(sum(q["status"] != "solved" for q in ps) / len(ps) if ps else math.nan)
+            for ax, y in zip(axes, (t, p, fr)):
+                ax.plot(counts, y, style, marker="o", ms=3, color=colours[x], label=f"{lab(x)}, {s}")
+    for ax, title in zip(axes, ("time to goal (s)", "mean plan time (ms)", "failed replan rate")):
+        ax.set_xlabel("particles")
+        ax.set_title(title)
+    axes[1].set_yscale("log")
+    axes[2].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "fig3_scaling.png"), dpi=100)
+    plt.close(fig)
+    # Figure 4 (and its table): the winner of each metric per scenario.
+    metrics = [("Time to Goal", ttg, min), ("Plan Time", plan_mean, min),
+               ("Failed Replan Rate", fail_rate, min), ("Path Length", length, min),
+               ("Path Divergence", div, min)]
+    md.append("\n## Figure 4: winner per metric and scenario\n")
+    md.append("| Scenario | " + " | ".join(m for m, _, _ in metrics) + " |")
+    md.append("|" + "---|" * (1 + len(metrics)))
+    grid = []
+    for s in scenarios:
+        row = []
+        for _, table, pick in metrics:
+            vals = {x: table.get((s, x), math.nan) for x in algos}
+            vals = {x: v for x, v in vals.items() if not math.isnan(v)}
+            row.append(pick(vals, key=vals.get) if vals else None)
+        grid.append(row)
+        md.append(f"| {NAMES[s]} | " + " | ".join(lab(w) if w else "–" for w in row) + " |")
+    fig, ax = plt.subplots(figsize=(2 + 1.8 * len(metrics), 0.8 + 0.6 * len(scenarios)))
+    ax.axis("off")
+    tab = ax.table(cellText=[[lab(w) if w else "–" for w in row] for row in grid],
+                   rowLabels=[NAMES[s] for s in scenarios], colLabels=[m for m, _, _ in metrics],
+                   cellColours=[[colours.get(w, "white") if w else "white" for w in row] for row in grid],
+                   loc="center")
+    tab.scale(1, 1.6)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "fig4_winners.png"), dpi=100)
+    plt.close(fig)
+    md.append(f"\nFigures: {', '.join(sorted(n for n in os.listdir(out) if n.startswith('fig')))} in {out}.\n")
+    text = "\n".join(md)
+    tmp = os.path.join(out, "sim_report.md.tmp")
+    with open(tmp, "w") as fh:
+        fh.write(text)
+    os.replace(tmp, os.path.join(out, "sim_report.md"))
+    print(text)
+
+
+if __name__ == "__main__":
+    main()
