@@ -7,9 +7,17 @@
 //                            and the mean of each part: snapshot, world, search, smoothing
 //   Frame/<with snapshot>    one SPH frame, and one frame plus a snapshot
 //   World/<occupancy|particles>  building a world from a snapshot
+//   DStarVsAStar             the same replans (the robot follows A*'s plans) planned by A* afresh
+//                            and by D* Lite incrementally; counters: how often D* Lite repairs
+//                            rather than restarts, and the p50 of each on repairs and restarts
+//   OccupancyChange          between replans 10 frames apart: the fraction of occupancy cells
+//                            that change, and of particles whose covered cells change (an
+//                            incremental update of the grid would have to redo at least those)
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "hpcplan/core/stopwatch.hpp"
@@ -112,6 +120,97 @@ void World(benchmark::State& state) {
   state.SetLabel(state.range(0) == 0 ? "occupancy" : "particles");
 }
 
+void DStarVsAStar(benchmark::State& state) {
+  sph::Fluid fluid = settled_fluid();
+  const sim::Placement at = sim::place_robot_and_goal(fluid.state(), 1);
+  const std::uint32_t exclude[2] = {at.robot_id, at.goal_id};
+  plan::FluidPlanOptions ao, dopt;
+  ao.algo = "astar";
+  dopt.algo = "dstar_lite";
+  plan::FluidReplanner astar(ao), dstar(dopt);
+  env::Vec<3> robot = at.robot;
+  std::vector<double> a_repair, d_repair, a_restart, d_restart;
+  std::uint64_t index = 0, wins = 0, changed = 0;
+  for (auto _ : state) {
+    for (int f = 0; f < 10; ++f) fluid.advance_frame();
+    const env::Vec<3> goal = sim::particle_position(fluid.state(), at.goal_id);
+    const env::FluidSnapshot snap = sim::take_snapshot(fluid.state(), exclude);
+    const plan::FluidPlan pa = astar.plan(snap, robot, goal, index);
+    const plan::FluidPlan pd = dstar.plan(snap, robot, goal, index++);
+    state.SetIterationTime((pa.total_us + pd.total_us) * 1e-6);
+    if (pd.status != pa.status)
+      state.SkipWithError("A* and D* Lite disagree on whether a path exists");
+    if (pa.status == Status::solved &&
+        std::abs(pa.search_cost - pd.search_cost) > 1e-9 * (1.0 + pa.search_cost)) {
+      std::fprintf(stderr, "mismatch %s astar %.9f dstar %.9f raw %.6f %.6f\n",
+                   pd.incremental.c_str(), pa.search_cost, pd.search_cost, pa.raw_length,
+                   pd.raw_length);
+      state.SkipWithError("D* Lite's optimum differs from A*'s");
+    }
+    if (pd.incremental == "repair") {
+      a_repair.push_back(pa.total_us * 1e-3), d_repair.push_back(pd.total_us * 1e-3);
+      wins += pd.total_us < pa.total_us;
+      changed += pd.changed_cells;
+    } else if (pd.incremental == "restart") {
+      a_restart.push_back(pa.total_us * 1e-3), d_restart.push_back(pd.total_us * 1e-3);
+    }
+    if (pa.status == Status::solved) robot = along(pa.path, 0.4);
+    if (env::distance<3>(robot, goal) < 0.2) robot = at.robot;
+  }
+  const double repairs = static_cast<double>(a_repair.size());
+  state.counters["repair_fraction"] = repairs / static_cast<double>(index);
+  state.counters["repair_astar_p50_ms"] = sim::quantile(a_repair, 0.5);
+  state.counters["repair_dstar_p50_ms"] = sim::quantile(d_repair, 0.5);
+  state.counters["repair_dstar_wins"] = repairs ? static_cast<double>(wins) / repairs : 0.0;
+  state.counters["repair_changed_cells"] = repairs ? static_cast<double>(changed) / repairs : 0.0;
+  state.counters["restart_astar_p50_ms"] = sim::quantile(a_restart, 0.5);
+  state.counters["restart_dstar_p50_ms"] = sim::quantile(d_restart, 0.5);
+}
+
+void OccupancyChange(benchmark::State& state) {
+  sph::Fluid fluid = settled_fluid();
+  std::vector<std::uint32_t> none;
+  env::FluidSnapshot before = sim::take_snapshot(fluid.state(), none);
+  env::OccupancyWorld old_world(before);
+  double cells = 0, particles = 0, occupied = 0;
+  std::uint64_t n = 0;
+  for (auto _ : state) {
+    for (int f = 0; f < 10; ++f) fluid.advance_frame();
+    // Compare particles by id: the snapshot lists them in storage order, which reordering moves.
+    const sph::Particles& p = fluid.state().particles;
+    env::FluidSnapshot now;
+    now.domain = before.domain;
+    now.particles.resize(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) now.particles[p.id[i]] = {p.x[i], p.y[i], p.z[i]};
+    for (const auto& b : fluid.state().boxes)
+      now.boxes.push_back(
+          {{b.box.lo[0], b.box.lo[1], b.box.lo[2]}, {b.box.hi[0], b.box.hi[1], b.box.hi[2]}});
+    const env::OccupancyWorld world(now);
+    std::uint64_t changed = 0;
+    for (std::uint32_t c = 0; c < world.cell_count(); ++c)
+      changed += world.occupied(c) != old_world.occupied(c);
+    // A particle's covered cells are those whose centre lies within 0.14: they change when the
+    // particle crosses one of the spheres around the cell centres; count a change of the nearest
+    // centre's cell or of the rounded offset to it (a lower bound on what an update must redo).
+    std::uint64_t moved = 0;
+    if (before.particles.size() == now.particles.size())
+      for (std::size_t i = 0; i < now.particles.size(); ++i)
+        moved += world.cell_of(now.particles[i]) != old_world.cell_of(before.particles[i]);
+    cells += static_cast<double>(changed) / static_cast<double>(world.cell_count());
+    occupied += static_cast<double>(changed) /
+                std::max<double>(1.0, static_cast<double>(world.occupied_count()));
+    particles += static_cast<double>(moved) / static_cast<double>(now.particles.size());
+    ++n;
+    old_world = world;
+    before = std::move(now);
+  }
+  state.counters["changed_cells_of_all"] = cells / static_cast<double>(n);
+  state.counters["changed_cells_of_occupied"] = occupied / static_cast<double>(n);
+  state.counters["particles_changing_cell"] = particles / static_cast<double>(n);
+}
+
+BENCHMARK(DStarVsAStar)->Iterations(200)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(OccupancyChange)->Iterations(50)->Unit(benchmark::kMillisecond);
 BENCHMARK(Replan)->DenseRange(0, 3)->Iterations(200)->UseManualTime()->Unit(
     benchmark::kMillisecond);
 BENCHMARK(Frame)->DenseRange(0, 1)->Iterations(200)->Unit(benchmark::kMillisecond);

@@ -56,7 +56,7 @@ std::string sim_runs_csv(const std::vector<sim::RunRecord>& runs, bool header, b
 std::string sim_replans_csv(const std::vector<sim::ReplanRecord>& replans, bool timings) {
   std::string out =
       "run,frame,sim_time_s,algorithm,status,reason,plan_us,expanded,length,waypoints,divergence,"
-      "world_us,search_us,smooth_us,start_escaped,goal_escaped\n";
+      "world_us,search_us,smooth_us,start_escaped,goal_escaped,incremental\n";
   auto t = [&](double v) { return timings ? num(v) : std::string(); };
   for (const sim::ReplanRecord& r : replans)
     out += std::to_string(r.run) + "," + std::to_string(r.frame) + "," + num(r.sim_time_s) + "," +
@@ -64,7 +64,8 @@ std::string sim_replans_csv(const std::vector<sim::ReplanRecord>& replans, bool 
            t(r.plan_us) + "," + std::to_string(r.expanded) + "," + num(r.length) + "," +
            std::to_string(r.waypoints) + "," + (r.divergence >= 0 ? num(r.divergence) : "") + "," +
            t(r.world_us) + "," + t(r.search_us) + "," + t(r.smooth_us) + "," +
-           (r.start_escaped ? "1" : "0") + "," + (r.goal_escaped ? "1" : "0") + "\n";
+           (r.start_escaped ? "1" : "0") + "," + (r.goal_escaped ? "1" : "0") + "," +
+           r.incremental + "\n";
   return out;
 }
 

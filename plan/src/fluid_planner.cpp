@@ -119,8 +119,8 @@ struct FluidReplanner::Incremental {
   using Graph = OccupancyGraph;
   struct Octile {
     const env::OccupancyWorld* world;
-    double operator()(std::uint32_t a, std::uint32_t b) const {
-      return full_connectivity_free_distance(occupancy_delta(*world, a, b)).value();
+    LatticeCost operator()(std::uint32_t a, std::uint32_t b) const {
+      return full_connectivity_free_distance(occupancy_delta(*world, a, b));
     }
   };
   // D* Lite reads the world through the heuristic (cell coordinates only): the grid's shape
@@ -208,12 +208,14 @@ FluidPlan FluidReplanner::plan(const env::FluidSnapshot& snapshot, const Vec3& r
               Incremental::Octile{&*inc.world});
           inc.dstar.reset(graph, s, g);
           ++inc.restarts;
+          out.incremental = "restart";
         } else {
           // Cells whose occupancy changed; every cell next to one of them has changed edges.
           std::vector<std::uint32_t> touched;
           const auto n = world.cells_per_axis();
           for (std::uint32_t i = 0; i < world.cell_count(); ++i) {
             if (world.occupied(i) == inc.world->occupied(i)) continue;
+            ++out.changed_cells;
             const Cell c = world.cell_of_index(i);
             for (int dz = -1; dz <= 1; ++dz)
               for (int dy = -1; dy <= 1; ++dy)
@@ -230,11 +232,15 @@ FluidPlan FluidReplanner::plan(const env::FluidSnapshot& snapshot, const Vec3& r
           inc.dstar.move_start(s);
           inc.dstar.edges_changed(graph, touched);
           ++inc.repairs;
+          out.incremental = "repair";
         }
         inc.dstar.reset_counters();
         out.status = inc.dstar.compute(graph, Stop(cancel));
         out.expanded = inc.dstar.expanded();
-        if (out.status == Status::solved) cells = inc.dstar.path(graph);
+        if (out.status == Status::solved) {
+          cells = inc.dstar.path(graph);
+          out.search_cost = inc.dstar.distance_to_goal(s);
+        }
         if (out.status == Status::solved && cells.empty()) out.status = Status::no_path;
         if (out.status == Status::cancelled) inc.world.reset();  // half-repaired: start over
       } else {
@@ -250,6 +256,7 @@ FluidPlan FluidReplanner::plan(const env::FluidSnapshot& snapshot, const Vec3& r
                                                                      OccupancyOctile{world, g}, so);
         out.status = r.status;
         out.expanded = r.counters.expanded;
+        out.search_cost = r.cost;
         cells = std::move(r.path);
       }
       for (std::uint32_t c : cells) inner.push_back(world.centre(world.cell_of_index(c)));

@@ -93,6 +93,7 @@ ReplanRecord record_of(int run, const FinishedPlan& f, const std::string& algo, 
   r.waypoints = r.solved ? f.plan.path.size() : 0;
   r.start_escaped = f.plan.start_escaped;
   r.goal_escaped = f.plan.goal_escaped;
+  r.incremental = f.plan.incremental;
   return r;
 }
 

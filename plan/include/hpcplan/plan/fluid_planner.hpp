@@ -67,9 +67,14 @@ struct FluidPlan {
   FailReason reason = FailReason::disconnected;
   std::vector<env::Vec<3>> path;  // robot .. goal after smoothing (empty unless solved)
   double raw_length = 0.0;        // the planner's path, before smoothing
+  double search_cost = 0.0;       // grid planners: the optimum they proved, in cells
   double length = 0.0;            // the returned path
   bool start_escaped = false, goal_escaped = false;
-  std::uint64_t expanded = 0;  // grid searches: expansions; trees: iterations
+  // dstar_lite: "restart" (first replan, or the goal changed cell: a new search) or "repair"
+  // (the previous search updated for the moved robot and the changed cells); else empty.
+  std::string incremental;
+  std::uint64_t changed_cells = 0;  // dstar_lite repairs: cells whose occupancy changed
+  std::uint64_t expanded = 0;       // grid searches: expansions; trees: iterations
   std::uint64_t collision_checks = 0;
   double world_us = 0.0;   // building the world from the snapshot
   double search_us = 0.0;  // the planner

@@ -30,6 +30,7 @@ struct ReplanRecord {
   std::size_t waypoints = 0;
   double divergence = -1.0;  // -1: no previous successful plan to compare with
   bool start_escaped = false, goal_escaped = false;
+  std::string incremental;  // dstar_lite: restart or repair
 };
 
 struct RunRecord {
