@@ -265,7 +265,9 @@ FluidPlan FluidReplanner::plan(const env::FluidSnapshot& snapshot, const Vec3& r
       if (!inner.empty()) {
         if (!out.start_escaped) inner.front() = robot;
         if (!out.goal_escaped) inner.back() = goal;
-        if (inner.size() == 1 && !(robot == goal)) inner.push_back(goal);
+        // Start and goal in one cell: the straight segment between them stays in it (a goal
+        // that had to escape is joined by the exempt last leg instead).
+        if (inner.size() == 1 && !out.goal_escaped && !(robot == goal)) inner.push_back(goal);
       }
     } else {
       WorldPlanOptions wo;

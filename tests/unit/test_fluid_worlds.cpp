@@ -303,6 +303,23 @@ TEST(FluidPlanner, EscapesABlockedStartAndFailsOnASealedGoal) {
     EXPECT_GE(p.length, std::sqrt(27.0) - 1e-9);
     EXPECT_LE(p.length, p.raw_length + 1e-9);
   }
+  // The goal's cell is blocked and its escape is the robot's own cell: the plan is the robot's
+  // position and the exempt leg to the goal (a once-found bug appended the blocked goal as an
+  // ordinary, checked segment).
+  env::FluidSnapshot near;
+  near.domain = {{0, 0, 0}, {4, 4, 4}};
+  near.particles.push_back({1.31, 1.1, 1.1});  // within 0.14 of cell (6,5,5)'s centre only
+  for (const std::string algo : {"astar", "dstar_lite"}) {
+    plan::FluidPlanOptions o;
+    o.algo = algo;
+    plan::FluidReplanner planner(o);
+    const auto p = planner.plan(near, {1.1, 1.1, 1.1}, {1.3, 1.1, 1.1}, 0);
+    ASSERT_EQ(p.status, Status::solved) << algo;
+    EXPECT_TRUE(p.goal_escaped) << algo;
+    EXPECT_FALSE(p.start_escaped) << algo;
+    ASSERT_EQ(p.path.size(), 2u) << algo;
+    EXPECT_EQ(p.path.back(), (Vec<3>{1.3, 1.1, 1.1})) << algo;
+  }
   // The goal inside a closed shell of boxes: every planner fails, none hangs.
   env::FluidSnapshot sealed;
   sealed.domain = {{0, 0, 0}, {4, 4, 4}};
