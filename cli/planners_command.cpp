@@ -18,7 +18,7 @@ Action register_planners_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("planners", "List every planner, where it runs, its options");
   cmd->add_flag("--json", args->json, "Print one JSON object");
   cmd->add_option("--world", args->world, "Only the planners of this setting")
-      ->check(CLI::IsMember({"grid", "map3d", "sphere2d", "ompl"}));
+      ->check(CLI::IsMember({"grid", "map3d", "sphere2d", "ompl", "sim"}));
   return [args](const Context& context) {
     if (!context.is_root()) return kExitOk;
     const auto& registry = plan::PlannerRegistry::get();

@@ -375,7 +375,7 @@ std::vector<PlannerSpec> fluid_planner_specs() {
        "A* on the fluid's occupancy grid (26-connected, exact octile heuristic)"},
       {"astar_euclid", "grid search", sim, {}, "the same A* with seed 000's Euclidean heuristic"},
       {"dstar_lite",
-       "incremental search",
+       "incremental",
        sim,
        {},
        "D* Lite on the occupancy grid, repairing its search between replans"},
