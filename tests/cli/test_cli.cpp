@@ -231,6 +231,15 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
       {"ompl --dims 2", "--density", "2"},
       {"ompl --dims 2", "--resolution", "1.5"},
       {"ompl --dims 2", "--grid-weight", "1e10"},
+      {"sim", "--particles", "200000001"},
+      {"sim", "--runs", "1000001"},
+      {"sim", "--replan-every", "1000001"},
+      {"sim", "--max-sim-s", "1e10"},
+      {"sim", "--max-wall-s", "1e10"},
+      {"sim", "--iterations", "1e10"},
+      {"sim", "--goal-bias", "1.5"},
+      {"sim", "--escape", "101"},
+      {"sim", "--threads", "4097"},
   };
   std::vector<Case> all = cases;
   for (const char* world : {"map3d", "sphere2d"})
@@ -259,7 +268,7 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
       ++tried;
     }
   }
-  EXPECT_EQ(tried, 41 * 10 + 41);
+  EXPECT_EQ(tried, 50 * 10 + 50);
 }
 
 }  // namespace
