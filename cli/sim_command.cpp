@@ -139,18 +139,13 @@ Action register_sim_command(CLI::App& app) {
   add_number(cmd, "--max-wall-s", o.max_wall_s,
              "Wall seconds before a run counts as failed (0: no cap)", 0, 1e9)
       ->capture_default_str();
-  add_number(cmd, "--iterations", o.planner.iterations, "rrtstar: samples per replan", 1, 1e9)
-      ->capture_default_str();
-  add_number(cmd, "--step", o.planner.step, "rrtstar: steering distance", 1e-9, 1e9)
-      ->capture_default_str();
-  add_number(cmd, "--rewire-radius", o.planner.rewire_radius, "rrtstar: rewiring radius", 0, 1e9)
-      ->capture_default_str();
-  add_number(cmd, "--goal-radius", o.planner.goal_radius, "rrtstar: goal capture radius", 0, 1e9)
-      ->capture_default_str();
-  add_number(cmd, "--goal-bias", o.planner.goal_bias, "rrtstar: goal sampling probability", 0, 1)
-      ->capture_default_str();
-  add_number(cmd, "--time", o.planner.time_s, "map3d planners: seconds per replan", 1e-6, 1e9)
-      ->capture_default_str();
+  // The planners' own parameters, declared in the registry (hpcplan planners --world sim).
+  add_param(cmd, "iterations", o.planner.iterations)->capture_default_str();
+  add_param(cmd, "step", o.planner.step)->capture_default_str();
+  add_param(cmd, "rewire_radius", o.planner.rewire_radius)->capture_default_str();
+  add_param(cmd, "goal_radius", o.planner.goal_radius)->capture_default_str();
+  add_param(cmd, "goal_bias", o.planner.goal_bias)->capture_default_str();
+  add_param(cmd, "time", o.planner.time_s)->capture_default_str();
   add_number(cmd, "--escape", o.planner.escape_cells,
              "How far (cells of 0.2) a blocked robot or goal may move to plan", 0, 100)
       ->capture_default_str();

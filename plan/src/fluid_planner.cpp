@@ -135,9 +135,10 @@ FluidReplanner::FluidReplanner(FluidPlanOptions options) : options_(std::move(op
     throw InputError("unknown planner for the simulator: " + options_.algo + " (hpcplan planners " +
                      "--world sim lists them; map3d planners run too)");
   if (options_.escape_cells < 0) throw InputError("--escape must not be negative");
-  if (!(options_.step > 0) || !(options_.rewire_radius >= 0) || !(options_.goal_radius >= 0) ||
+  if (!(options_.step >= 0) || !(options_.rewire_radius >= 0) || !(options_.goal_radius >= 0) ||
       !(options_.goal_bias >= 0 && options_.goal_bias <= 1) || !(options_.time_s > 0))
-    throw InputError("the RRT* step must be positive, its radii >= 0 and its goal bias in [0, 1]");
+    throw InputError(
+        "the RRT* step and radii must be >= 0, the goal bias in [0, 1] and the time positive");
   if (options_.world != "default" && options_.world != "particles" && options_.world != "occupancy")
     throw InputError("--world must be particles or occupancy, not " + options_.world);
   if (options_.algo == "dstar_lite") incremental_ = std::make_unique<Incremental>();
