@@ -162,6 +162,15 @@ def main():
         for p in ps:
             if p["status"] != "solved":
                 reasons[x][p["reason"]] += 1
+    esc = []
+    for x in algos:
+        ps = [p for (s2, x2), lst in plans.items() if x2 == x for p in lst]
+        if ps and "start_escaped" in ps[0]:
+            se = sum(p["start_escaped"] == "1" for p in ps) / len(ps)
+            ge = sum(p["goal_escaped"] == "1" for p in ps) / len(ps)
+            esc.append(f"{lab(x)}: start {100 * se:.1f}%, goal {100 * ge:.1f}%")
+    if esc:
+        md.append("Blocked ends moved to a free spot (share of replans): " + "; ".join(esc) + ".\n")
     if reasons:
         md.append("Why replans failed (all scenarios): " + "; ".join(
             f"{lab(x)}: " + ", ".join(f"{k} {v}" for k, v in sorted(reasons[x].items())) for x in algos if reasons[x]) + ".\n")
