@@ -95,6 +95,41 @@ std::vector<Vec3> with_ends(const Vec3& robot, const Vec3& goal, std::vector<Vec
   return path;
 }
 
+// A map3d planner of the registry through plan_in_world, from a to b in `world`.
+template <class W>
+void run_registry_planner(const W& world, const Vec3& a, const Vec3& b, const FluidPlanOptions& o,
+                          std::uint64_t seed, double resolution, std::stop_token cancel,
+                          FluidPlan& out, std::vector<Vec3>& inner) {
+  WorldPlanOptions wo;
+  wo.algo = o.algo;
+  wo.seed = seed;
+  wo.time_s = o.time_s;
+  wo.resolution = resolution;
+  wo.cancel = std::move(cancel);
+  const auto r = plan_in_world(world, a, b, wo);
+  out.status = r.status;
+  out.expanded = r.counters.expanded + r.counters.samples;
+  inner = r.path;
+}
+
+// After the search: the reason, and for a solved plan the smoother (in the planner's world),
+// the exact re-check of the part that is checked, and the exempt legs around it.
+template <class W>
+void finish_plan(const W& world, const Vec3& robot, const Vec3& goal, const std::string& algo,
+                 std::vector<Vec3> inner, Stopwatch& clock, FluidPlan& out) {
+  out.search_us = clock.milliseconds() * 1e3;
+  out.reason = reason_of(out.status);
+  if (out.status != Status::solved) return;
+  out.raw_length = env::polyline_length<3>(with_ends(robot, goal, inner));
+  clock.restart();
+  inner = env::shortcut_path(world, inner);
+  out.smooth_us = clock.milliseconds() * 1e3;
+  if (const std::string why = path_problem(world, inner, inner.front(), inner.back()); !why.empty())
+    throw RunError("internal error: " + algo + " returned a bad path: " + why);
+  out.path = with_ends(robot, goal, std::move(inner));
+  out.length = env::polyline_length<3>(out.path);
+}
+
 }  // namespace
 
 std::string_view to_string(FailReason r) {
@@ -271,30 +306,9 @@ FluidPlan FluidReplanner::plan(const env::FluidSnapshot& snapshot, const Vec3& r
         if (inner.size() == 1 && !out.goal_escaped && !(robot == goal)) inner.push_back(goal);
       }
     } else {
-      WorldPlanOptions wo;
-      wo.algo = o.algo;
-      wo.seed = seed;
-      wo.time_s = o.time_s;
-      wo.resolution = world.cell_size()[0];
-      wo.cancel = cancel;
-      const auto r = plan_in_world(world, a, b, wo);
-      out.status = r.status;
-      out.expanded = r.counters.expanded + r.counters.samples;
-      inner = r.path;
+      run_registry_planner(world, a, b, o, seed, world.cell_size()[0], cancel, out, inner);
     }
-    out.search_us = clock.milliseconds() * 1e3;
-    out.reason = reason_of(out.status);
-    if (out.status == Status::solved) {
-      out.raw_length = env::polyline_length<3>(with_ends(robot, goal, inner));
-      clock.restart();
-      inner = env::shortcut_path(world, inner);
-      out.smooth_us = clock.milliseconds() * 1e3;
-      if (const std::string why = path_problem(world, inner, inner.front(), inner.back());
-          !why.empty())
-        throw RunError("internal error: " + o.algo + " returned a bad path: " + why);
-      out.path = with_ends(robot, goal, std::move(inner));
-      out.length = env::polyline_length<3>(out.path);
-    }
+    finish_plan(world, robot, goal, o.algo, std::move(inner), clock, out);
     return finish(out);
   }
 
@@ -335,29 +349,9 @@ FluidPlan FluidReplanner::plan(const env::FluidSnapshot& snapshot, const Vec3& r
     if (r.status == Status::no_path) out.status = Status::budget_exceeded;
     inner = std::move(r.path);
   } else {
-    WorldPlanOptions wo;
-    wo.algo = o.algo;
-    wo.seed = seed;
-    wo.time_s = o.time_s;
-    wo.resolution = o.occupancy.cell;
-    wo.cancel = cancel;
-    const auto r = plan_in_world(world, *a, *b, wo);
-    out.status = r.status;
-    out.expanded = r.counters.expanded + r.counters.samples;
-    inner = r.path;
+    run_registry_planner(world, *a, *b, o, seed, o.occupancy.cell, cancel, out, inner);
   }
-  out.search_us = clock.milliseconds() * 1e3;
-  out.reason = reason_of(out.status);
-  if (out.status == Status::solved) {
-    out.raw_length = env::polyline_length<3>(with_ends(robot, goal, inner));
-    clock.restart();
-    inner = env::shortcut_path(world, inner);
-    out.smooth_us = clock.milliseconds() * 1e3;
-    if (const std::string why = path_problem(world, inner, *a, *b); !why.empty())
-      throw RunError("internal error: " + o.algo + " returned a bad path: " + why);
-    out.path = with_ends(robot, goal, std::move(inner));
-    out.length = env::polyline_length<3>(out.path);
-  }
+  finish_plan(world, robot, goal, o.algo, std::move(inner), clock, out);
   return finish(out);
 }
 
