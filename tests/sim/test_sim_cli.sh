@@ -80,6 +80,12 @@ for name in robots:
     assert 3 in roles, "the trail is a polyline"
 print("sim_cli: vtk ok")
 PY
+# The headless render draws the robot's part too.
+"$py" "$(dirname "$0")/../../scripts/render_sph.py" "$dir/vtk/run_1" --out "$dir/render" \
+  > /dev/null || fail "render_sph.py failed on a simulator run"
+[[ $(ls "$dir"/render_*.png | wc -l) -ge 2 && ( -s $dir/render.mp4 || -s $dir/render.gif ) ]] ||
+  fail "render: frames or animation missing"
+echo "sim_cli: render ok"
 
 # Realtime: frames are paced to 0.02 s of wall time.
 start=$(date +%s.%N)
