@@ -152,17 +152,17 @@ std::string_view to_string(FailReason r) {
 
 struct FluidReplanner::Incremental {
   using Graph = OccupancyGraph;
+  // The heuristic reads only cell coordinates, which every frame's grid shares (the box does
+  // not change), so it may look at whichever frame `world` holds.
   struct Octile {
-    const env::OccupancyWorld* world;
+    const std::optional<env::OccupancyWorld>* world;
     LatticeCost operator()(std::uint32_t a, std::uint32_t b) const {
-      return full_connectivity_free_distance(occupancy_delta(*world, a, b));
+      return full_connectivity_free_distance(occupancy_delta(**world, a, b));
     }
   };
-  // D* Lite reads the world through the heuristic (cell coordinates only): the grid's shape
-  // stays the same from frame to frame, so any frame's world serves.
   std::optional<env::OccupancyWorld> world;  // the frame the search is consistent with
-  search::DStarLite<Graph, Octile> dstar{Octile{nullptr}};
-  std::uint64_t restarts = 0, repairs = 0;
+  // One object for the whole run: a restart resets it, keeping its arrays' memory.
+  search::DStarLite<Graph, Octile> dstar{Octile{&world}};
 };
 
 FluidReplanner::FluidReplanner(FluidPlanOptions options) : options_(std::move(options)) {
@@ -190,7 +190,7 @@ FluidPlan FluidReplanner::plan(const env::FluidSnapshot& snapshot, const Vec3& r
   const Stopwatch total;
   const std::uint64_t checks0 = CheckCounter::this_thread();
   const std::uint64_t seed = splitmix64_mix(o.seed * 0x9E3779B97F4A7C15ull + replan_index);
-  const bool on_grid = grid_algo(o.algo) || (o.world == "occupancy" && !grid_algo(o.algo));
+  const bool on_grid = grid_algo(o.algo) || o.world == "occupancy";
   auto finish = [&](FluidPlan& p) -> FluidPlan& {
     p.total_us = total.milliseconds() * 1e3;
     p.collision_checks = CheckCounter::this_thread() - checks0;
@@ -240,10 +240,7 @@ FluidPlan FluidReplanner::plan(const env::FluidSnapshot& snapshot, const Vec3& r
             *inc.world = world;  // copy into the same storage
           else
             inc.world.emplace(world);
-          inc.dstar = search::DStarLite<OccupancyGraph, Incremental::Octile>(
-              Incremental::Octile{&*inc.world});
           inc.dstar.reset(graph, s, g);
-          ++inc.restarts;
           out.incremental = "restart";
         } else {
           // Cells whose occupancy changed; every cell next to one of them has changed edges.
@@ -267,7 +264,6 @@ FluidPlan FluidReplanner::plan(const env::FluidSnapshot& snapshot, const Vec3& r
           *inc.world = world;
           inc.dstar.move_start(s);
           inc.dstar.edges_changed(graph, touched);
-          ++inc.repairs;
           out.incremental = "repair";
         }
         inc.dstar.reset_counters();

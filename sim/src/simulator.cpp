@@ -47,8 +47,6 @@ void validate(const SimOptions& o) {
   plan::FluidReplanner check(o.planner);  // throws for an unknown planner or bad options
 }
 
-namespace {}  // namespace
-
 Placement place_robot_and_goal(const sph::FluidState& s, std::uint64_t seed) {
   const sph::Particles& p = s.particles;
   std::vector<std::size_t> fluid;
@@ -143,7 +141,6 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
   std::vector<env::Vec<3>> previous, trail{robot.position()};
   std::vector<double> sph_ms, snapshot_ms;
   std::uint64_t replan_index = 0;
-  const std::size_t first_replan = replans.size();
 
   env::FluidSnapshot snapshot;
   auto apply = [&](FinishedPlan f) {
@@ -236,7 +233,6 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
   rec.sph_ms_per_frame = quantile(sph_ms, 0.5);
   rec.snapshot_ms = quantile(snapshot_ms, 0.5);
   rec.distance_travelled = robot.travelled();
-  (void)first_replan;
 }
 
 }  // namespace
