@@ -59,6 +59,21 @@ std::string cells_xml(const Appended&, std::uint64_t conn, std::uint64_t offs,
          "</Cells>\n";
 }
 
+// The points and cells, appended after the attribute arrays already in `data`, and the whole
+// document around them.
+std::string grid_document(Appended& data, const std::string& attributes,
+                          const std::vector<double>& points,
+                          const std::vector<std::int64_t>& connectivity,
+                          const std::vector<std::int64_t>& offsets,
+                          const std::vector<std::uint8_t>& types) {
+  const std::uint64_t pts = data.add(points);
+  const std::uint64_t conn = data.add(connectivity), offs = data.add(offsets),
+                      typ = data.add(types);
+  const std::string arrays = "<Points>\n" + data_array("Float64", "", 3, pts) + "</Points>\n" +
+                             cells_xml(data, conn, offs, typ);
+  return unstructured_grid(points.size() / 3, types.size(), attributes, arrays, data);
+}
+
 }  // namespace
 
 std::string vtu_particles(const sph::FluidState& s) {
@@ -83,12 +98,7 @@ std::string vtu_particles(const sph::FluidState& s) {
                                  data_array("Float64", "density", 1, data.add(density)) +
                                  data_array("Float64", "pressure", 1, data.add(pressure)) +
                                  data_array("Int64", "id", 1, data.add(id)) + "</PointData>\n";
-  const std::uint64_t pts = data.add(points);
-  const std::uint64_t conn = data.add(connectivity), offs = data.add(offsets),
-                      typ = data.add(types);
-  const std::string arrays = "<Points>\n" + data_array("Float64", "", 3, pts) + "</Points>\n" +
-                             cells_xml(data, conn, offs, typ);
-  return unstructured_grid(density.size(), density.size(), point_data, arrays, data);
+  return grid_document(data, point_data, points, connectivity, offsets, types);
 }
 
 std::string vtu_boxes(const std::vector<sph::MovingBox>& boxes) {
@@ -113,12 +123,7 @@ std::string vtu_boxes(const std::vector<sph::MovingBox>& boxes) {
   const std::string cell_data = "<CellData Scalars=\"speed\">\n" +
                                 data_array("Float64", "speed", 1, data.add(speed)) +
                                 "</CellData>\n";
-  const std::uint64_t pts = data.add(points);
-  const std::uint64_t conn = data.add(connectivity), offs = data.add(offsets),
-                      typ = data.add(types);
-  const std::string arrays = "<Points>\n" + data_array("Float64", "", 3, pts) + "</Points>\n" +
-                             cells_xml(data, conn, offs, typ);
-  return unstructured_grid(points.size() / 3, boxes.size(), cell_data, arrays, data);
+  return grid_document(data, cell_data, points, connectivity, offsets, types);
 }
 
 std::string vtu_robot(const std::array<double, 3>& robot, const std::array<double, 3>& goal,
@@ -144,12 +149,7 @@ std::string vtu_robot(const std::array<double, 3>& robot, const std::array<doubl
   Appended data;
   const std::string cell_data = "<CellData Scalars=\"role\">\n" +
                                 data_array("Int64", "role", 1, data.add(role)) + "</CellData>\n";
-  const std::uint64_t pts = data.add(points);
-  const std::uint64_t conn = data.add(connectivity), offs = data.add(offsets),
-                      typ = data.add(types);
-  const std::string arrays = "<Points>\n" + data_array("Float64", "", 3, pts) + "</Points>\n" +
-                             cells_xml(data, conn, offs, typ);
-  return unstructured_grid(points.size() / 3, types.size(), cell_data, arrays, data);
+  return grid_document(data, cell_data, points, connectivity, offsets, types);
 }
 
 VtkSeries::VtkSeries(std::string dir) : dir_(std::move(dir)) {
