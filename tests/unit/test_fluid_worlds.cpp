@@ -107,20 +107,32 @@ TEST(OccupancyWorld, SegmentsFreeOnlyThroughFreeCells) {
   EXPECT_FALSE(w.segment_free({-0.1, 1, 1}, {1, 1, 1}));
 }
 
+// Segments are checked against every ball and box by fine sampling (tolerance 1e-3 for the
+// sampling). Short ones (RRT*'s steps) take the world's bounding-box path; long ones (the
+// smoother's, across the box) take its voxel-walk path, in a dense and in a sparse field.
+bool brute_force_free(const env::FluidSnapshot& snap, double r, const Vec<3>& a, const Vec<3>& b,
+                      bool* certain) {
+  const int samples = std::max(2000, static_cast<int>(env::distance<3>(a, b) / 5e-4));
+  double nearest = 1e300;
+  bool in_box = false;
+  for (int i = 0; i <= samples; ++i) {
+    const Vec<3> p = env::lerp<3>(a, b, static_cast<double>(i) / samples);
+    for (const auto& c : snap.particles) {
+      double d2 = 0;
+      for (int k = 0; k < 3; ++k) d2 += (p[k] - c[k]) * (p[k] - c[k]);
+      nearest = std::min(nearest, d2);
+    }
+    for (const auto& box : snap.boxes) in_box = in_box || box.contains(p);
+  }
+  const double d = std::sqrt(nearest);
+  *certain = in_box || std::abs(d - r) > 1e-3;
+  return !in_box && d > r;
+}
+
 TEST(ParticleWorld, PointAndSegmentTestsMatchBruteForce) {
   const env::FluidSnapshot snap = random_snapshot(11, 3.0, 400, 2);
   const env::ParticleWorld w(snap);
   const double r = w.radius();
-  auto d2_segment = [](const Vec<3>& a, const Vec<3>& b, const Vec<3>& c) {
-    double best = 1e300;
-    for (int i = 0; i <= 2000; ++i) {
-      const Vec<3> p = env::lerp<3>(a, b, i / 2000.0);
-      double d2 = 0;
-      for (int k = 0; k < 3; ++k) d2 += (p[k] - c[k]) * (p[k] - c[k]);
-      best = std::min(best, d2);
-    }
-    return best;
-  };
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(0.0, 3.0);
   int free = 0;
@@ -128,19 +140,11 @@ TEST(ParticleWorld, PointAndSegmentTestsMatchBruteForce) {
     const Vec<3> a{u(rng), u(rng), u(rng)};
     Vec<3> b;
     for (int k = 0; k < 3; ++k) b[k] = std::clamp(a[k] + (u(rng) - 1.5) * 0.3, 0.0, 3.0);
-    // Brute force: every ball, every box (sampled finely; tolerance for the sampling).
-    double nearest = 1e300;
-    for (const auto& p : snap.particles) nearest = std::min(nearest, d2_segment(a, b, p));
-    bool in_box = false;
-    for (int i = 0; i <= 2000 && !in_box; ++i)
-      for (const auto& box : snap.boxes)
-        in_box = in_box || box.contains(env::lerp<3>(a, b, i / 2000.0));
+    bool certain = false;
+    const bool expect = brute_force_free(snap, r, a, b, &certain);
     const bool f = w.segment_free(a, b);
-    if (std::sqrt(nearest) > r + 1e-3 && !in_box) {
-      EXPECT_TRUE(f) << t;
-    }
-    if (std::sqrt(nearest) < r - 1e-3 || in_box) {
-      EXPECT_FALSE(f) << t;
+    if (certain) {
+      EXPECT_EQ(f, expect) << t;
     }
     free += f;
     // Points: exact.
@@ -156,6 +160,31 @@ TEST(ParticleWorld, PointAndSegmentTestsMatchBruteForce) {
   }
   EXPECT_GT(free, 50);
   EXPECT_LT(free, 390);
+
+  // Long segments, corner to corner of random points, in the dense field and a sparse one.
+  for (const int particles : {400, 100, 25}) {
+    const env::FluidSnapshot field = random_snapshot(13, 3.0, particles, 1);
+    const env::ParticleWorld world(field);
+    int long_free = 0, long_blocked = 0;
+    for (int t = 0; t < 100; ++t) {
+      // From near one corner to near the opposite one: at least 1.8 along every axis, so the
+      // grown bounding box spans over 512 cells and the world walks the segment's cells.
+      Vec<3> a, b;
+      for (int k = 0; k < 3; ++k) {
+        a[k] = 0.2 * u(rng), b[k] = 3.0 - 0.2 * u(rng);
+        if (u(rng) < 1.5) std::swap(a[k], b[k]);
+      }
+      bool certain = false;
+      const bool expect = brute_force_free(field, r, a, b, &certain);
+      const bool f = world.segment_free(a, b);
+      if (certain) {
+        EXPECT_EQ(f, expect) << particles << " particles, segment " << t;
+      }
+      f ? ++long_free : ++long_blocked;
+    }
+    EXPECT_GT(long_blocked, 0) << particles;  // blocked in both fields, free in the sparse one
+    EXPECT_GT(particles == 25 ? long_free : long_blocked, 3) << particles;
+  }
 }
 
 // Dijkstra over the occupancy grid with the graph's move rule, written independently.

@@ -46,7 +46,6 @@ class ParticleWorld {
   double free_volume() const;
   std::uint64_t collision_checks() const { return checks_.value(); }
   double radius() const { return radius_; }
-  std::size_t particle_count() const { return centres_.size(); }
 
  private:
   std::array<int, 3> cell_of(const Point& p) const;

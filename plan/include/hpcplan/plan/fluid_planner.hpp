@@ -96,7 +96,6 @@ class FluidReplanner {
   // planners' seed from one replan to the next, reproducibly.
   FluidPlan plan(const env::FluidSnapshot& snapshot, const env::Vec<3>& robot,
                  const env::Vec<3>& goal, std::uint64_t replan_index, std::stop_token cancel = {});
-  const FluidPlanOptions& options() const { return options_; }
 
  private:
   struct Incremental;  // D* Lite's state between replans

@@ -49,9 +49,7 @@ class DStarLite {
     goal_ = goal;
     rhs_[goal] = Dist{Cost{}, false};
     push(goal);
-    initialised_ = true;
   }
-  bool initialised() const { return initialised_; }
   State goal() const { return goal_; }
 
   // The robot moved to `start`: keys already queued stay valid lower bounds through km.
@@ -179,7 +177,6 @@ class DStarLite {
   std::vector<Entry> heap_;
   Cost km_{};
   State start_{}, goal_{};
-  bool initialised_ = false;
   std::uint64_t expanded_ = 0;
 };
 

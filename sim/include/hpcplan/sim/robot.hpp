@@ -24,7 +24,6 @@ class Robot {
   // A new plan: its first point is where the robot was when it was asked for; the robot heads
   // for the first waypoint after the one nearest to where it is now.
   void follow(std::vector<env::Vec<3>> path);
-  void clear_plan() { path_.clear(), next_ = 0; }
   // Advances by dt seconds.
   void step(double dt);
 
