@@ -58,7 +58,7 @@ env::Vec<3> along(const std::vector<env::Vec<3>>& path, double distance) {
 
 void Replan(benchmark::State& state) {
   sph::Fluid fluid = settled_fluid();
-  const sim::Placement at = sim::place_robot_and_goal(fluid.state(), 1);
+  const sim::Placement at = sim::place_robot_and_goal(sph::Scenario::particles, fluid.state(), 1);
   const std::uint32_t exclude[2] = {at.robot_id, at.goal_id};
   plan::FluidPlanOptions po;
   po.algo = kAlgos[state.range(0)];
@@ -99,7 +99,7 @@ void Replan(benchmark::State& state) {
 
 void Frame(benchmark::State& state) {
   sph::Fluid fluid = settled_fluid();
-  const sim::Placement at = sim::place_robot_and_goal(fluid.state(), 1);
+  const sim::Placement at = sim::place_robot_and_goal(sph::Scenario::particles, fluid.state(), 1);
   const std::uint32_t exclude[2] = {at.robot_id, at.goal_id};
   for (auto _ : state) {
     fluid.advance_frame();
@@ -122,7 +122,7 @@ void World(benchmark::State& state) {
 
 void DStarVsAStar(benchmark::State& state) {
   sph::Fluid fluid = settled_fluid();
-  const sim::Placement at = sim::place_robot_and_goal(fluid.state(), 1);
+  const sim::Placement at = sim::place_robot_and_goal(sph::Scenario::particles, fluid.state(), 1);
   const std::uint32_t exclude[2] = {at.robot_id, at.goal_id};
   plan::FluidPlanOptions ao, dopt;
   ao.algo = "astar";

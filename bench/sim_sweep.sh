@@ -15,6 +15,8 @@
 # static dynamic"), ALGOS ("astar rrtstar dstar_lite"), TRIALS (5), SEED (1), PACE (realtime: the
 # seed's, planning latency costs simulated time; lockstep: deterministic and faster than real
 # time), MAX_SIM_S (300), THREADS (2), BIN (build/bin/hpcplan).
+# The dam break (beyond the seed; water, so far costlier per particle) is its own sweep, e.g.
+#   SCENARIOS=dambreak PARTICLES="250 2000 6750" MAX_SIM_S=10 bench/sim_sweep.sh results/sim/dam
 # Aggregate with: python3 scripts/sim_report.py OUT [more result folders...]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)

@@ -37,10 +37,7 @@ int run(SimArgs& a) {
   o.scenario = sph::parse_scenario(a.scenario);
   o.pace = sim::parse_pace(a.pace);
   sim::validate(o);
-  sph::FluidOptions fo;
-  fo.scenario = o.scenario;
-  fo.particles = o.particles;
-  const std::uint64_t need = sph::estimated_bytes(fo);
+  const std::uint64_t need = sph::estimated_bytes(sim::fluid_options(o, o.seed));
   const double budget = a.memory_mb > 0.0 ? a.memory_mb * 1048576.0
                                           : 0.5 * static_cast<double>(available_memory_bytes());
   if (budget > 0.0 && static_cast<double>(need) > budget)
@@ -107,9 +104,13 @@ Action register_sim_command(CLI::App& app) {
   SimArgs& a = *args;
   sim::SimOptions& o = a.o;
   CLI::App* cmd = app.add_subcommand("sim", "Replan through the live fluid (seed 000's simulator)");
-  add_number(cmd, "--particles", o.particles, "Fluid particles (the seed preset)", 2, 200'000'000)
+  add_number(cmd, "--particles", o.particles,
+             "Fluid particles (dambreak rounds to its lattice: 2 k^3, k even)", 2, 200'000'000)
       ->capture_default_str();
-  cmd->add_option("--scenario", a.scenario, "particles | static | dynamic")->capture_default_str();
+  cmd->add_option("--scenario", a.scenario,
+                  "particles | static | dynamic (the seed's) | dambreak (a water column "
+                  "collapsing across the robot's way)")
+      ->capture_default_str();
   cmd->add_option("--algo", o.planner.algo,
                   "Planner: astar, astar_euclid, dstar_lite, rrtstar (hpcplan planners --world "
                   "sim), or any map3d planner")
@@ -131,8 +132,9 @@ Action register_sim_command(CLI::App& app) {
              "Lockstep: frames between a plan's launch and its use", 0, 1'000'000)
       ->capture_default_str();
   add_number(cmd, "--settle-frames", o.settle_frames,
-             "Frames the fluid settles before the robot and goal are placed", 0, 1'000'000)
-      ->capture_default_str();
+             "Frames the fluid settles before the robot and goal are placed (default 200; "
+             "dambreak 0: the column falls as the run starts)",
+             0, 1'000'000);
   add_number(cmd, "--max-sim-s", o.max_sim_s, "Simulated seconds before a run counts as failed",
              1e-3, 1e9)
       ->capture_default_str();

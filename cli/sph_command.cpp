@@ -117,7 +117,7 @@ Action register_sph_command(CLI::App& app) {
   cmd->add_option("--preset", a.preset, "seed (the paper's parameters) | water (validated WCSPH)")
       ->capture_default_str();
   cmd->add_option("--scenario", a.scenario,
-                  "seed: particles|static|dynamic (default particles); water: dambreak|tank "
+                  "seed: particles|static|dynamic (default particles); water: dambreak|tank|column "
                   "(default dambreak)");
   add_number(cmd, "--particles", a.particles, "Fluid particles (water rounds to its lattice)", 1,
              200'000'000)

@@ -28,8 +28,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-SCENARIOS = ["particles", "static", "dynamic"]
-NAMES = {"particles": "Particles Only", "static": "Static Obstacles", "dynamic": "Dynamic Obstacles"}
+SCENARIOS = ["particles", "static", "dynamic", "dambreak"]
+NAMES = {"particles": "Particles Only", "static": "Static Obstacles", "dynamic": "Dynamic Obstacles",
+         "dambreak": "Dam Break"}
 LABEL = {"astar": "A*", "astar_euclid": "A* (Euclid)", "dstar_lite": "D* Lite", "rrtstar": "RRT*"}
 
 
@@ -216,7 +217,7 @@ def main():
     fig, axes = plt.subplots(1, 3, figsize=(14, 4))
     for x in algos:
         for s in scenarios:
-            style = {"particles": "-", "static": "--", "dynamic": ":"}[s]
+            style = {"particles": "-", "static": "--", "dynamic": ":", "dambreak": "-."}[s]
             t, p, fr = [], [], []
             for n in counts:
                 rs = [r for r in by[(s, x)] if int(r["particle_count"]) == n]

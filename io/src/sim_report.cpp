@@ -79,6 +79,7 @@ nlohmann::json to_json(const SimInvocation& s) {
   j["seed"] = o.seed;
   j["pace"] = std::string(sim::to_string(o.pace));
   j["replan_every"] = o.replan_every;
+  j["settle_frames"] = sim::settle_frames(o);
   j["max_sim_s"] = o.max_sim_s;
   j["max_wall_s"] = o.max_wall_s;
   j["threads"] = s.threads;

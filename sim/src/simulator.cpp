@@ -27,27 +27,66 @@ std::string_view to_string(Pace p) {
 void validate(const SimOptions& o) {
   using sph::Scenario;
   if (o.scenario != Scenario::particles && o.scenario != Scenario::static_boxes &&
-      o.scenario != Scenario::dynamic_boxes)
-    throw InputError("the simulator runs --scenario particles, static or dynamic (not " +
+      o.scenario != Scenario::dynamic_boxes && o.scenario != Scenario::dambreak)
+    throw InputError("the simulator runs --scenario particles, static, dynamic or dambreak (not " +
                      std::string(sph::to_string(o.scenario)) + ")");
   if (o.particles < 2) throw InputError("--particles must be at least 2 (a robot and a goal)");
   if (o.runs < 1) throw InputError("--runs must be at least 1");
   if (o.replan_every < 1) throw InputError("--replan-every must be at least 1 frame");
   if (o.lockstep_delay < 0) throw InputError("--lockstep-delay must not be negative");
-  if (o.settle_frames < 0) throw InputError("--settle-frames must not be negative");
+  if (o.settle_frames < -1) throw InputError("--settle-frames must not be negative");
   if (!(o.max_sim_s > 0) || !std::isfinite(o.max_sim_s))
     throw InputError("--max-sim-s must be a positive number of seconds");
   if (!(o.max_wall_s >= 0) || !std::isfinite(o.max_wall_s))
     throw InputError("--max-wall-s must be a number of seconds >= 0 (0: no cap)");
   if (!(o.goal_radius > 0)) throw InputError("the goal radius must be positive");
-  sph::FluidOptions fo;
-  fo.scenario = o.scenario;
-  fo.particles = o.particles;
-  if (!o.make_fluid) sph::validate(fo);
+  if (!o.make_fluid) sph::validate(fluid_options(o, o.seed));
   plan::FluidReplanner check(o.planner);  // throws for an unknown planner or bad options
 }
 
-Placement place_robot_and_goal(const sph::FluidState& s, std::uint64_t seed) {
+sph::FluidOptions fluid_options(const SimOptions& o, std::uint64_t seed) {
+  sph::FluidOptions fo;
+  fo.particles = o.particles;
+  fo.seed = seed;
+  fo.scenario = o.scenario;
+  if (o.scenario == sph::Scenario::dambreak) {
+    fo.preset = sph::Preset::water;
+    fo.scenario = sph::Scenario::column;
+  }
+  return fo;
+}
+
+int settle_frames(const SimOptions& o) {
+  if (o.settle_frames >= 0) return o.settle_frames;
+  return o.scenario == sph::Scenario::dambreak ? 0 : 200;
+}
+
+namespace {
+
+// dambreak: a point in each end bay of the tank, the robot's end drawn at random.
+Placement place_in_end_bays(const sph::FluidState& s, std::uint64_t seed) {
+  SplitMix64 rng(splitmix64_mix(seed ^ 0xDA3B5EEDull));
+  auto uniform = [&](double lo, double hi) {
+    return lo + (hi - lo) * static_cast<double>(rng.next() >> 11) * 0x1.0p-53;
+  };
+  const sph::Box3& d = s.domain;
+  auto point_in_bay = [&](bool low_end) {
+    const double from_end = uniform(0.2, 1.0);
+    return env::Vec<3>{low_end ? d.lo[0] + from_end : d.hi[0] - from_end,
+                       uniform(d.lo[1] + 0.2, d.hi[1] - 0.2), d.lo[2] + uniform(0.3, 1.0)};
+  };
+  const bool robot_low = (rng.next() & 1) == 0;
+  Placement at;
+  at.robot = point_in_bay(robot_low);
+  at.goal = point_in_bay(!robot_low);
+  return at;
+}
+
+}  // namespace
+
+Placement place_robot_and_goal(sph::Scenario scenario, const sph::FluidState& s,
+                               std::uint64_t seed) {
+  if (scenario == sph::Scenario::dambreak) return place_in_end_bays(s, seed);
   const sph::Particles& p = s.particles;
   std::vector<std::size_t> fluid;
   for (std::size_t i = 0; i < p.size(); ++i)
@@ -105,15 +144,12 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
   rec.scenario = std::string(sph::to_string(o.scenario));
   rec.pace = std::string(to_string(o.pace));
 
-  sph::FluidOptions fo;
-  fo.scenario = o.scenario;
-  fo.particles = o.particles;
-  fo.seed = run_seed;
-  sph::Fluid fluid(o.make_fluid ? o.make_fluid(run_seed) : sph::make_fluid(fo),
-                   sph::make_cpu_backend());
+  sph::Fluid fluid(
+      o.make_fluid ? o.make_fluid(run_seed) : sph::make_fluid(fluid_options(o, run_seed)),
+      sph::make_cpu_backend());
   rec.particle_count = fluid.state().fluid_count;
   const double dt = fluid.state().params.frame_dt;
-  for (int f = 0; f < o.settle_frames; ++f)
+  for (int f = 0, settle = settle_frames(o); f < settle; ++f)
     if (const auto r = fluid.advance_frame(); !r.problem.empty()) {
       rec.end = "fluid_unstable";
       return;
@@ -125,7 +161,7 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
     at = {robot_id, goal_id, particle_position(fluid.state(), robot_id),
           particle_position(fluid.state(), goal_id)};
   } else {
-    at = place_robot_and_goal(fluid.state(), run_seed);
+    at = place_robot_and_goal(o.scenario, fluid.state(), run_seed);
   }
   rec.start_goal_distance = env::distance<3>(at.robot, at.goal);
   const std::uint32_t exclude[2] = {at.robot_id, at.goal_id};
@@ -202,7 +238,7 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
       break;
     }
     robot.step(dt);
-    goal = particle_position(fluid.state(), at.goal_id);
+    if (at.goal_id != kNoParticle) goal = particle_position(fluid.state(), at.goal_id);
     trail.push_back(robot.position());
     if (env::distance<3>(robot.position(), goal) <= o.goal_radius) {
       rec.success = true;

@@ -100,8 +100,8 @@ FluidState make_seed(const FluidOptions& o) {
 struct WaterLayout {
   int nx = 0, ny = 0, nz = 0;
   double dx = 0.0;
-  Box3 domain;    // where the fluid may go
-  Vec3 fluid_hi;  // the fluid block is [0, fluid_hi]
+  Box3 domain;              // where the fluid may go
+  Vec3 fluid_lo, fluid_hi;  // the fluid block (on the lattice from the domain's corner)
 };
 
 WaterLayout water_layout(const FluidOptions& o) {
@@ -114,6 +114,16 @@ WaterLayout water_layout(const FluidOptions& o) {
     w.dx = 0.5 / w.nz;
     w.fluid_hi = {1.0, 1.0, 0.5};
     w.domain = {{0, 0, 0}, {1.0, 1.0, 0.75}};
+  } else if (o.scenario == Scenario::column) {
+    // nz = 2 nx = 2 ny, nx even so that the column's faces (x = 1.5 and 2.5) lie on the lattice.
+    w.nx = std::max(2, static_cast<int>(std::lround(std::cbrt(n / 2.0))));
+    w.nx += w.nx % 2;
+    w.ny = w.nx;
+    w.nz = 2 * w.nx;
+    w.dx = 1.0 / w.nx;
+    w.fluid_lo = {1.5, 0.0, 0.0};
+    w.fluid_hi = {2.5, 1.0, 2.0};
+    w.domain = {{0, 0, 0}, {4.0, 1.0, 3.0}};
   } else {
     // nz = 2 nx, ny = nx / 4: the column a x a/4 x 2a.
     w.nx = std::max(4, static_cast<int>(std::lround(std::cbrt(2.0 * n))));
@@ -139,7 +149,7 @@ FluidState make_water(const FluidOptions& o) {
   f.smoothing_length = 1.3 * w.dx;
   f.support = 2.0 * f.smoothing_length;
   f.gravity = {0.0, 0.0, -kG};
-  const double height = w.fluid_hi[2];
+  const double height = w.fluid_hi[2] - w.fluid_lo[2];
   f.sound_speed = 10.0 * std::sqrt(2.0 * kG * height);
   f.alpha = 0.1;
   f.cfl = 0.25;
@@ -153,7 +163,8 @@ FluidState make_water(const FluidOptions& o) {
   for (int k = 0; k < w.nz; ++k)
     for (int j = 0; j < w.ny; ++j)
       for (int i = 0; i < w.nx; ++i) {
-        const Vec3 x{(i + 0.5) * w.dx, (j + 0.5) * w.dx, (k + 0.5) * w.dx};
+        const Vec3 x{w.fluid_lo[0] + (i + 0.5) * w.dx, w.fluid_lo[1] + (j + 0.5) * w.dx,
+                     w.fluid_lo[2] + (k + 0.5) * w.dx};
         s.particles.add(x, {0, 0, 0}, hydrostatic(x[2]), false);
       }
   s.fluid_count = s.particles.size();
@@ -191,8 +202,9 @@ Scenario parse_scenario(std::string_view name) {
   if (name == "dynamic") return Scenario::dynamic_boxes;
   if (name == "dambreak") return Scenario::dambreak;
   if (name == "tank") return Scenario::tank;
+  if (name == "column") return Scenario::column;
   throw InputError("unknown --scenario '" + std::string(name) +
-                   "' (expected particles, static, dynamic, dambreak or tank)");
+                   "' (expected particles, static, dynamic, dambreak, tank or column)");
 }
 
 std::string_view to_string(Preset p) {
@@ -211,6 +223,8 @@ std::string_view to_string(Scenario s) {
       return "dambreak";
     case Scenario::tank:
       return "tank";
+    case Scenario::column:
+      return "column";
   }
   return "?";
 }
@@ -218,13 +232,14 @@ std::string_view to_string(Scenario s) {
 void validate(const FluidOptions& o) {
   if (o.particles < 1) throw InputError("--particles must be at least 1");
   if (o.particles > 200'000'000) throw InputError("--particles must be at most 200000000");
-  const bool water_scene = o.scenario == Scenario::dambreak || o.scenario == Scenario::tank;
+  const bool water_scene = o.scenario == Scenario::dambreak || o.scenario == Scenario::tank ||
+                           o.scenario == Scenario::column;
   if (o.preset == Preset::seed && water_scene)
     throw InputError("the seed preset has no walls to hold water: --scenario " +
                      std::string(to_string(o.scenario)) + " needs --preset water");
   if (o.preset == Preset::water && !water_scene)
     throw InputError(
-        "the water preset runs --scenario tank or dambreak (the seed's scenarios "
+        "the water preset runs --scenario tank, dambreak or column (the seed's scenarios "
         "particles, static and dynamic are --preset seed)");
 }
 

@@ -1,5 +1,6 @@
 // The simulator end to end: a robot reaches its goal in an empty box and around a static box,
-// a sealed goal fails at the cap without hanging, lockstep runs repeat exactly, a plan still
+// and across the collapsing water column of dambreak, a sealed goal fails at the cap without
+// hanging, lockstep runs repeat exactly, a plan still
 // running when a run ends is cancelled, the realtime hand-off works (also under ThreadSanitizer:
 // label threads), bad options are refused.
 #include <gtest/gtest.h>
@@ -138,6 +139,54 @@ TEST(Simulator, LockstepRunsRepeatExactly) {
   }
 }
 
+// dambreak: the column (1 m x 1 m x 2 m, 432 particles here) falls as the run starts, so the
+// first plan climbs over it; the robot crosses from one end bay to the other while the water
+// spreads, and every particle stays in the tank.
+TEST(Simulator, DamBreakCrossing) {
+  for (const std::string algo : {"astar", "rrtstar"}) {
+    sim::SimOptions o;
+    o.scenario = sph::Scenario::dambreak;
+    o.particles = 250;
+    o.seed = 3;
+    o.max_sim_s = 6.0;
+    o.planner.algo = algo;
+    // column_top: the highest particle over the column's footprint after 0.6 s (later the
+    // surges run up the end walls and their jets fall back over the middle).
+    double first_plan_top = -1.0, column_top = 0.0, lowest_x = 9, highest_x = -9;
+    env::Vec<3> start{}, goal{};
+    bool inside = true;
+    const sim::SimResult r = sim::run_simulation(o, {}, [&](const sim::FrameView& v) {
+      const sph::FluidState& f = *v.fluid;
+      if (v.frame == 1) start = v.robot, goal = v.goal;
+      if (first_plan_top < 0 && !v.plan->empty())
+        for (const env::Vec<3>& q : *v.plan) first_plan_top = std::max(first_plan_top, q[2]);
+      for (std::size_t i = 0; i < f.particles.size(); ++i) {
+        if (f.particles.wall[i]) continue;
+        const sph::Vec3 x = f.particles.position(i);
+        for (int k = 0; k < 3; ++k)
+          inside = inside && x[k] >= f.domain.lo[k] && x[k] <= f.domain.hi[k];
+        if (v.frame == 30 && x[0] > 1.5 && x[0] < 2.5) column_top = std::max(column_top, x[2]);
+        lowest_x = std::min(lowest_x, x[0]), highest_x = std::max(highest_x, x[0]);
+      }
+      for (int k = 0; k < 3; ++k) inside = inside && v.robot[k] >= 0 && v.robot[k] <= 4;
+    });
+    const sim::RunRecord& run = r.runs[0];
+    EXPECT_EQ(run.particle_count, 432u) << algo;  // 250 rounds to 6 x 6 x 12
+    EXPECT_TRUE(run.success) << algo << " " << run.end;
+    EXPECT_TRUE(inside) << algo;
+    // Opposite end bays, 0.2..1.0 m from the end walls (the robot has moved one frame).
+    EXPECT_LT(std::min(start[0], goal[0]), 1.1) << algo;
+    EXPECT_GT(std::max(start[0], goal[0]), 2.9) << algo;
+    EXPECT_GT(goal[2], 0.29) << algo;
+    EXPECT_GT(first_plan_top, 2.0) << algo << ": the first plan goes over the standing column";
+    EXPECT_GT(column_top, 0.3) << algo;
+    EXPECT_LT(column_top, 1.0) << algo << ": the column has fallen";
+    EXPECT_LT(lowest_x, 1.0) << algo << ": the water spreads both ways";
+    EXPECT_GT(highest_x, 3.0) << algo;
+    EXPECT_GT(run.total_replans, 3u) << algo;
+  }
+}
+
 TEST(SimulatorThreads, RealtimeHandOffReachesTheGoal) {
   sim::SimOptions o = scene({0.5, 0.5, 0.5}, {2.5, 2.5, 2.5}, {}, "astar");
   o.pace = sim::Pace::realtime;
@@ -180,6 +229,7 @@ TEST(Simulator, RefusesBadOptions) {
   bad([](sim::SimOptions& o) { o.max_sim_s = 0; });
   bad([](sim::SimOptions& o) { o.max_wall_s = -1; });
   bad([](sim::SimOptions& o) { o.scenario = sph::Scenario::tank; });
+  bad([](sim::SimOptions& o) { o.scenario = sph::Scenario::column; });  // sim: dambreak
   bad([](sim::SimOptions& o) { o.planner.algo = "nosuch"; });
   bad([](sim::SimOptions& o) { o.planner.goal_bias = 2; });
   EXPECT_THROW(sim::parse_pace("fast"), InputError);

@@ -57,6 +57,19 @@ for r in rep[1:]:
 print("sim_cli: lockstep, json and csv ok")
 PY
 
+# dambreak: the water column (250 particles round to 432), no settling, the run and its JSON.
+"$bin" sim --particles 250 --scenario dambreak --algo astar --max-sim-s 0.4 --json \
+  > "$dir/dam.json" || fail "dambreak run failed"
+"$py" - "$dir/dam.json" <<'PY' || exit 1
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["scenario"] == "dambreak" and j["settle_frames"] == 0, j
+row = j["runs"][0]
+assert row["particle_count"] == 432 and row["end"] in ("goal_reached", "sim_time_cap"), row
+assert row["total_replans"] >= 2, row
+print("sim_cli: dambreak ok")
+PY
+
 # VTK with the robot: read back by VTK's own readers.
 "$bin" sim --particles 600 --scenario static --algo astar --max-sim-s 2 --settle-frames 5 \
   --vtk "$dir/vtk" --every 20 > /dev/null || fail "vtk run failed"

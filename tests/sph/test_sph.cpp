@@ -343,6 +343,43 @@ TEST(Presets, SeedFieldIsReagitated) {
   EXPECT_GT(after, 0.5 * 1000 * 0.05 * 2.0);  // mean |v|^2 of the kick is about 5.2 m^2/s^2
 }
 
+// The simulator's dam break: the column stands on the lattice in the middle of its tank, and
+// falls both ways symmetrically (the centre of mass stays over x = 2 while it spreads), keeping
+// its mass and every particle in the tank.
+TEST(Presets, WaterColumnFallsBothWaysInItsTank) {
+  FluidOptions o;
+  o.preset = Preset::water;
+  o.scenario = parse_scenario("column");
+  o.particles = 250;  // 6 x 6 x 12 (the width rounds up to an even count)
+  Fluid fluid(make_fluid(o), make_cpu_backend());
+  const FluidState& s = fluid.state();
+  ASSERT_EQ(s.fluid_count, 432u);
+  EXPECT_GT(estimated_bytes(o), 0u);
+  for (std::size_t i = 0; i < s.particles.size(); ++i) {
+    const Vec3 x = s.particles.position(i);
+    const bool in_column = x[0] > 1.5 && x[0] < 2.5 && x[1] > 0 && x[1] < 1 && x[2] > 0 && x[2] < 2;
+    const bool in_tank = x[0] > 0 && x[0] < 4 && x[1] > 0 && x[1] < 1 && x[2] > 0;
+    EXPECT_EQ(in_column, !s.particles.wall[i]) << i;
+    if (s.particles.wall[i]) {
+      EXPECT_FALSE(in_tank) << i;
+    }
+  }
+  const RunReport r = run_frames(fluid, 30, {});
+  ASSERT_TRUE(r.stable) << r.problem;
+  const FluidSummary sum = summarise(s);
+  EXPECT_EQ(sum.fluid, 432u);
+  double mean_x = 0.0, lo = 9.0, hi = -9.0;
+  for (std::size_t i = 0; i < s.particles.size(); ++i) {
+    if (s.particles.wall[i]) continue;
+    mean_x += s.particles.x[i] / 432.0;
+    lo = std::min(lo, s.particles.x[i]), hi = std::max(hi, s.particles.x[i]);
+  }
+  EXPECT_NEAR(mean_x, 2.0, 0.02);
+  EXPECT_LT(lo, 0.6);  // 0.6 s: both fronts have run about 1.2 m
+  EXPECT_GT(hi, 3.4);
+  EXPECT_NEAR(lo, 4.0 - hi, 0.2);
+}
+
 TEST(Presets, BadOptionsAreInputErrors) {
   FluidOptions o;
   o.particles = 0;
@@ -357,6 +394,9 @@ TEST(Presets, BadOptionsAreInputErrors) {
   EXPECT_THROW(parse_preset("lava"), InputError);
   EXPECT_THROW(parse_scenario("ocean"), InputError);
   EXPECT_EQ(parse_scenario("dynamic"), Scenario::dynamic_boxes);
+  o = {};
+  o.scenario = Scenario::column;  // water only
+  EXPECT_THROW(validate(o), InputError);
 }
 
 TEST(Boundaries, AMovingBoxReflectsOffTheWallsAndPushesParticlesOut) {

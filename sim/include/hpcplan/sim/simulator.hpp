@@ -9,6 +9,12 @@
 // for a plan from the robot to where the goal is now. Replans count from the first one after
 // the robot and goal exist; a run that hits --max-sim-s or --max-wall-s is recorded as failed.
 //
+// Scenarios: the seed's particles, static and dynamic (seed preset), and dambreak (beyond the
+// seed; the water preset's `column`): a 1 m x 1 m x 2 m water column in the middle of a tank
+// 4 m x 1 m x 3 m collapses as the run starts (no settling), and the robot crosses the tank from
+// a seeded point in one end bay (x within 0.2..1.0 m of its end wall, 0.2..0.8 m off the side
+// walls, 0.3..1.0 m above the floor) to a fixed goal drawn the same way in the other bay.
+//
 // Pacing:
 //   realtime  the seed's: plans run on the planner thread (one at a time) while frames go on,
 //             and a frame never takes less than its 0.02 s of wall time, so a slow plan costs
@@ -45,7 +51,7 @@ struct SimOptions {
   Pace pace = Pace::lockstep;
   int replan_every = 10;     // frames
   int lockstep_delay = 1;    // frames between a lockstep plan's launch and its use
-  int settle_frames = 200;   // the seed's settling phase
+  int settle_frames = -1;    // -1: the scenario's (the seed's 200; dambreak 0)
   double max_sim_s = 300.0;  // simulated seconds before a run is failed
   double max_wall_s = 0.0;   // wall seconds before a run is failed; 0 = none
   double goal_radius = 0.2;  // 4 particle radii of 0.05
@@ -72,13 +78,21 @@ struct SimResult {
   std::vector<ReplanRecord> replans;
 };
 
-// The robot's and the goal's particles: two fluid particles at least half the box apart, drawn
-// by id from a generator seeded with `seed` (the farthest pair drawn if 10,000 draws find none).
+// Where the robot and the goal start. The seed's scenarios: two fluid particles at least half
+// the box apart, drawn by id from a generator seeded with `seed` (the farthest pair drawn if
+// 10,000 draws find none); the goal then moves with its particle. dambreak: two fixed points,
+// one in each end bay (see above), neither a particle.
+inline constexpr std::uint32_t kNoParticle = 0xFFFFFFFFu;
 struct Placement {
-  std::uint32_t robot_id = 0, goal_id = 0;
+  std::uint32_t robot_id = kNoParticle, goal_id = kNoParticle;
   env::Vec<3> robot{}, goal{};
 };
-Placement place_robot_and_goal(const sph::FluidState& state, std::uint64_t seed);
+Placement place_robot_and_goal(sph::Scenario scenario, const sph::FluidState& state,
+                               std::uint64_t seed);
+
+// The fluid a run of this scenario starts from (preset, scenario, particles, seed).
+sph::FluidOptions fluid_options(const SimOptions& options, std::uint64_t seed);
+int settle_frames(const SimOptions& options);  // the options' or the scenario's default
 
 // Checks the options (InputError with a one-line reason).
 void validate(const SimOptions& options);

@@ -23,8 +23,11 @@
 //   rho0 dx^3, Tait EOS with c0 = 10 sqrt(2 g H) (H the fluid's height; ten times the largest
 //   free-fall speed), Monaghan viscosity alpha = 0.1, free-slip walls of three layers of
 //   particles carrying extrapolated pressures (Adami et al. 2012), hydrostatic initial density.
-//   Scenarios: tank (water 0.5 m deep in a 1 m x 1 m tank) and dambreak (Martin and Moyce's
-//   column: width a = 2.25 in, height 2a, in a tank 6a long, a/4 wide).
+//   Scenarios: tank (water 0.5 m deep in a 1 m x 1 m tank), dambreak (Martin and Moyce's
+//   column: width a = 2.25 in, height 2a, in a tank 6a long, a/4 wide) and column (a dam break
+//   at a robot's scale for the simulator: a column 1 m x 1 m x 2 m standing in the middle of a
+//   tank 4 m long, 1 m wide and 3 m tall, so it collapses both ways; the columns of particles
+//   across the column's width are an even number, nx = 2, 4, ...).
 #include <cstdint>
 #include <string_view>
 
@@ -32,7 +35,7 @@
 
 namespace hpcplan::sph {
 
-enum class Scenario { particles, static_boxes, dynamic_boxes, dambreak, tank };
+enum class Scenario { particles, static_boxes, dynamic_boxes, dambreak, tank, column };
 
 Preset parse_preset(std::string_view name);      // InputError if unknown
 Scenario parse_scenario(std::string_view name);  // InputError if unknown
