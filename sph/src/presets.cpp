@@ -100,8 +100,8 @@ FluidState make_seed(const FluidOptions& o) {
 struct WaterLayout {
   int nx = 0, ny = 0, nz = 0;
   double dx = 0.0;
-  Box3 domain;              // where the fluid may go
-  Vec3 fluid_lo, fluid_hi;  // the fluid block (on the lattice from the domain's corner)
+  Box3 domain;                  // where the fluid may go
+  Vec3 fluid_lo{}, fluid_hi{};  // the fluid block (on the lattice from the domain's corner)
 };
 
 WaterLayout water_layout(const FluidOptions& o) {
