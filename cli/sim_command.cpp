@@ -67,7 +67,7 @@ int run(SimArgs& a) {
       vtk = std::make_unique<io::VtkSeries>(dir);
       vtk_run = v.run;
     }
-    vtk->write(v.frame, *v.fluid, io::vtu_robot(v.robot, v.goal, *v.plan, *v.trail));
+    vtk->write(v.frame, v.owner->full_state(), io::vtu_robot(v.robot, v.goal, *v.plan, *v.trail));
   };
   std::function<void(const sim::FrameView&)> on_frame = [&](const sim::FrameView& v) {
     if (!a.trajectory.empty())
@@ -152,6 +152,10 @@ Action register_sim_command(CLI::App& app) {
              "How far (cells of 0.2) a blocked robot or goal may move to plan", 0, 100)
       ->capture_default_str();
   add_number(cmd, "--threads", a.threads, "OpenMP threads of the fluid", 1, 4096);
+  cmd->add_option("--backend", o.backend,
+                  "The fluid's backend: cpu (OpenMP) | cuda (the GPU; refused with the reason "
+                  "where it cannot run)")
+      ->capture_default_str();
   add_number(cmd, "--memory-mb", a.memory_mb,
              "Refuse runs needing more memory (default: half the available)", 1, 1e9);
   cmd->add_option("--csv", a.csv, "Write one row per run (seed 000's columns first)");

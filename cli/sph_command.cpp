@@ -32,7 +32,7 @@ struct SphArgs {
   std::uint64_t frames = 100;
   std::uint64_t seed = 1;
   int threads = 0;
-  std::string vtk_dir, front_csv, output;
+  std::string vtk_dir, front_csv, output, backend = "cpu";
   std::uint64_t every = 10;
   double memory_mb = 0.0;
   bool json = false;
@@ -47,6 +47,7 @@ int run(const SphArgs& a) {
   o.particles = a.particles;
   o.seed = a.seed;
   sph::validate(o);
+  sph::check_backend_name(a.backend);
   // The memory budget: an explicit one, else half of what the machine has available.
   const std::uint64_t need = sph::estimated_bytes(o);
   const double budget = a.memory_mb > 0.0 ? a.memory_mb * 1048576.0
@@ -73,13 +74,13 @@ int run(const SphArgs& a) {
   info.domain = initial.domain;
   info.params = initial.params;
   info.wall_particles = initial.particles.size() - initial.fluid_count;
-  sph::Fluid fluid(std::move(initial), sph::make_cpu_backend());
+  sph::Fluid fluid(std::move(initial), a.backend);
   info.backend = fluid.backend().name();
 
   std::unique_ptr<io::VtkSeries> vtk;
   if (!a.vtk_dir.empty()) {
     vtk = std::make_unique<io::VtkSeries>(a.vtk_dir);
-    vtk->write(0, fluid.state());
+    vtk->write(0, fluid.full_state());
   }
   // The surge front, every substep.
   std::vector<std::pair<double, double>> front;
@@ -94,12 +95,13 @@ int run(const SphArgs& a) {
   const Stopwatch clock;
   info.report = sph::run_frames(
       fluid, a.frames,
-      [&](std::uint64_t frame, const sph::FluidState& s) {
-        if (vtk && (frame % a.every == 0 || frame == a.frames)) vtk->write(frame, s);
+      [&](std::uint64_t frame, const sph::FluidState&) {
+        if (vtk && (frame % a.every == 0 || frame == a.frames))
+          vtk->write(frame, fluid.full_state());
       },
       watch_front);
   info.seconds = clock.seconds();
-  info.summary = sph::summarise(fluid.state());
+  info.summary = sph::summarise(fluid.full_state());
 
   if (!a.front_csv.empty()) write_file_atomically(a.front_csv, io::front_csv(front));
   const std::string json = io::to_json(info).dump() + "\n";
@@ -128,6 +130,9 @@ Action register_sph_command(CLI::App& app) {
       ->capture_default_str();
   add_number(cmd, "--threads", a.threads, "OpenMP threads (default: OMP_NUM_THREADS or all)", 1,
              4096);
+  cmd->add_option("--backend", a.backend,
+                  "cpu (OpenMP) | cuda (the GPU; refused with the reason where it cannot run)")
+      ->capture_default_str();
   cmd->add_option("--vtk", a.vtk_dir, "Write VTK for ParaView into this directory (fluid.pvd)");
   add_number(cmd, "--every", a.every, "With --vtk: write every K-th frame", 1, 100'000'000)
       ->capture_default_str();

@@ -83,6 +83,7 @@ nlohmann::json to_json(const SimInvocation& s) {
   j["max_sim_s"] = o.max_sim_s;
   j["max_wall_s"] = o.max_wall_s;
   j["threads"] = s.threads;
+  j["backend"] = o.backend;
   j["seconds"] = s.seconds;
   nlohmann::json rows = nlohmann::json::array();
   std::vector<double> ttg, plan, plan_p50, plan_p99, fail_rate, lengths, sph_ms;

@@ -41,6 +41,7 @@ void validate(const SimOptions& o) {
     throw InputError("--max-wall-s must be a number of seconds >= 0 (0: no cap)");
   if (!(o.goal_radius > 0)) throw InputError("the goal radius must be positive");
   if (!o.make_fluid) sph::validate(fluid_options(o, o.seed));
+  sph::check_backend_name(o.backend);
   plan::FluidReplanner check(o.planner);  // throws for an unknown planner or bad options
 }
 
@@ -146,7 +147,7 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
 
   sph::Fluid fluid(
       o.make_fluid ? o.make_fluid(run_seed) : sph::make_fluid(fluid_options(o, run_seed)),
-      sph::make_cpu_backend());
+      o.backend);
   rec.particle_count = fluid.state().fluid_count;
   const double dt = fluid.state().params.frame_dt;
   for (int f = 0, settle = settle_frames(o); f < settle; ++f)
@@ -249,7 +250,7 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
       rec.end = "wall_time_cap";
     }
     if (on_frame) {
-      FrameView v{run,  frame + 1,     &fluid.state(), robot.position(),
+      FrameView v{run,  frame + 1,     &fluid.state(), &fluid,          robot.position(),
                   goal, &robot.path(), &trail,         !rec.end.empty()};
       on_frame(v);
     }

@@ -199,7 +199,7 @@ class CpuBackend final : public StepBackend {
  public:
   std::string name() const override { return "cpu"; }
 
-  double stable_dt(const FluidState& s) const override {
+  double stable_dt(const FluidState& s) override {
     const Particles& p = s.particles;
     const Index n = static_cast<Index>(p.size());
     double v2 = 0.0, a2 = 0.0;
@@ -216,30 +216,7 @@ class CpuBackend final : public StepBackend {
       most_neighbours = std::max(most_neighbours, p.neighbours[i]);
       compressed = compressed || p.rho[i] > s.params.rest_density;
     }
-    for (const MovingBox& b : s.boxes) v2 = std::max(v2, dot(b.velocity, b.velocity));
-    const FluidParams& f = s.params;
-    // The signal speed: the flow plus sound. The seed's EOS clamps at the rest density, so
-    // sound (sqrt(k)) only travels where some particle is compressed.
-    double c = f.sound_speed;
-    if (f.preset == Preset::seed) c = compressed ? std::sqrt(f.gas_constant) : 0.0;
-    const double h = f.preset == Preset::water ? f.smoothing_length : f.support;
-    const double g2 = dot(f.gravity, f.gravity);
-    a2 = std::max(a2, g2);
-    double dt = f.frame_dt;
-    const double speed = c + std::sqrt(v2);
-    if (speed > 0.0) dt = std::min(dt, f.cfl * h / speed);
-    if (a2 > 0.0) dt = std::min(dt, f.cfl * std::sqrt(h / std::sqrt(a2)));
-    if (f.preset == Preset::seed && f.viscosity > 0.0) {
-      // Müller's viscous acceleration relaxes a velocity difference at a rate of at most
-      // mu m lap W(0) / rho^2 per neighbour, rho no less than a particle's own density: keep
-      // the explicit update well inside its stability limit.
-      const double rho_min = f.particle_mass * Poly6Kernel(f.support).w(0.0);
-      const double rate = f.viscosity * f.particle_mass *
-                          ViscosityKernel(f.support).laplacian(0.0) / (rho_min * rho_min) *
-                          std::max<std::uint32_t>(1, most_neighbours);
-      dt = std::min(dt, 0.5 / rate);
-    }
-    return dt;
+    return stable_dt_from(s, {v2, a2, most_neighbours, compressed});
   }
 
   SubstepReport substep(FluidState& s, double dt) override {
@@ -278,6 +255,32 @@ class CpuBackend final : public StepBackend {
 };
 
 }  // namespace
+
+double stable_dt_from(const FluidState& s, const StepLimits& limits) {
+  const FluidParams& f = s.params;
+  double v2 = limits.max_speed2, a2 = limits.max_acceleration2;
+  for (const MovingBox& b : s.boxes) v2 = std::max(v2, dot(b.velocity, b.velocity));
+  // The signal speed: the flow plus sound. The seed's EOS clamps at the rest density, so
+  // sound (sqrt(k)) only travels where some particle is compressed.
+  double c = f.sound_speed;
+  if (f.preset == Preset::seed) c = limits.compressed ? std::sqrt(f.gas_constant) : 0.0;
+  const double h = f.preset == Preset::water ? f.smoothing_length : f.support;
+  a2 = std::max(a2, dot(f.gravity, f.gravity));
+  double dt = f.frame_dt;
+  const double speed = c + std::sqrt(v2);
+  if (speed > 0.0) dt = std::min(dt, f.cfl * h / speed);
+  if (a2 > 0.0) dt = std::min(dt, f.cfl * std::sqrt(h / std::sqrt(a2)));
+  if (f.preset == Preset::seed && f.viscosity > 0.0) {
+    // Müller's viscous acceleration relaxes a velocity difference at a rate of at most
+    // mu m lap W(0) / rho^2 per neighbour, rho no less than a particle's own density: keep
+    // the explicit update well inside its stability limit.
+    const double rho_min = f.particle_mass * Poly6Kernel(f.support).w(0.0);
+    const double rate = f.viscosity * f.particle_mass * ViscosityKernel(f.support).laplacian(0.0) /
+                        (rho_min * rho_min) * std::max<std::uint32_t>(1, limits.most_neighbours);
+    dt = std::min(dt, 0.5 / rate);
+  }
+  return dt;
+}
 
 std::uint32_t list_capacity(Preset preset) {
   // A packed water particle has ~75 neighbours within 2.6 dx, the seed's gas a handful; more

@@ -11,11 +11,12 @@ namespace hpcplan::sph {
 Fluid::Fluid(FluidState initial, std::unique_ptr<StepBackend> backend)
     : state_(std::move(initial)), backend_(std::move(backend)) {}
 
-namespace {
+Fluid::Fluid(FluidState initial, std::string_view backend)
+    : state_(std::move(initial)), backend_(make_backend(backend, state_)) {}
 
 // The agitation of frame `frame`: a fresh velocity for every fluid particle, from a generator
 // seeded by (run seed, frame, particle id).
-void agitate(FluidState& s, std::uint64_t frame) {
+void StepBackend::agitate(FluidState& s, std::uint64_t frame) {
   Particles& p = s.particles;
   const FluidParams& f = s.params;
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
@@ -32,14 +33,16 @@ void agitate(FluidState& s, std::uint64_t frame) {
   }
 }
 
-}  // namespace
+std::string StepBackend::end_frame(FluidState& s) {
+  return first_problem(s);
+}
 
 FrameReport Fluid::advance_frame(const std::function<void(const FluidState&)>& after_substep) {
   FrameReport report;
   Stopwatch clock;
   if (state_.params.agitate_every > 0 && frame_ > 0 &&
       frame_ % static_cast<std::uint64_t>(state_.params.agitate_every) == 0)
-    agitate(state_, frame_);
+    backend_->agitate(state_, frame_);
   ++frame_;
   // The frame ends at an exact multiple of frame_dt, so that rounding never adds a sliver.
   const double end = static_cast<double>(frame_) * state_.params.frame_dt;
@@ -56,11 +59,25 @@ FrameReport Fluid::advance_frame(const std::function<void(const FluidState&)>& a
     report.grid_ms += backend_->substep(state_, dt).grid_ms;
     if (pieces <= 1.0) state_.time = end;
     ++report.substeps;
-    if (after_substep) after_substep(state_);
+    if (after_substep) {
+      backend_->sync_positions(state_);
+      after_substep(state_);
+    }
   }
+  const std::string problem = backend_->end_frame(state_);
   report.ms = clock.milliseconds();
-  if (report.problem.empty()) report.problem = first_problem(state_);
+  if (report.problem.empty()) report.problem = problem;
   return report;
+}
+
+const FluidState& Fluid::state() const {
+  backend_->sync_positions(state_);
+  return state_;
+}
+
+const FluidState& Fluid::full_state() const {
+  backend_->download(state_);
+  return state_;
 }
 
 namespace {

@@ -127,6 +127,14 @@ bad() {
 bad "particles" --particles 1
 bad "scenario" --scenario tank
 bad "scenario" --scenario nosuch
+bad "backend" --backend gpu
+if ! "$bin" sim --backend cuda --particles 300 --max-sim-s 0.1 --settle-frames 0 > /dev/null 2>&1; then
+  bad "backend cuda" --backend cuda
+fi
+bad "backend" --backend gpu
+if ! "$bin" sim --backend cuda --particles 300 --max-sim-s 0.1 --settle-frames 0 > /dev/null 2>&1; then
+  bad "backend cuda" --backend cuda
+fi
 bad "planner" --algo nosuch
 bad "pace" --pace fast
 bad "replan-every" --replan-every 0

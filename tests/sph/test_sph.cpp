@@ -380,6 +380,30 @@ TEST(Presets, WaterColumnFallsBothWaysInItsTank) {
   EXPECT_NEAR(lo, 4.0 - hi, 0.2);
 }
 
+// Backends by name: the CPU one by name is the CPU one; unknown names and a CUDA backend that
+// cannot run here are input errors naming the reason (the GPU itself: sph_gpu_agreement).
+TEST(Backends, ChosenByNameOrRefusedWithTheReason) {
+  FluidOptions o;
+  o.scenario = Scenario::dynamic_boxes;
+  o.particles = 500;
+  Fluid named(make_fluid(o), "cpu"), made(make_fluid(o), make_cpu_backend());
+  EXPECT_EQ(named.backend().name(), "cpu");
+  run_frames(named, 5, {});
+  run_frames(made, 5, {});
+  EXPECT_EQ(named.state().particles.x, made.state().particles.x);
+  EXPECT_EQ(&named.full_state(), &named.state());  // the CPU's state is always whole
+  EXPECT_THROW(check_backend_name("gpu"), InputError);
+  EXPECT_THROW(Fluid(make_fluid(o), "opencl"), InputError);
+  if (const std::string why = cuda_unavailable_reason(); !why.empty()) {
+    try {
+      check_backend_name("cuda");
+      ADD_FAILURE() << "cuda accepted although: " << why;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Presets, BadOptionsAreInputErrors) {
   FluidOptions o;
   o.particles = 0;

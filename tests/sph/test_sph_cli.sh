@@ -107,4 +107,13 @@ bad "front without a dam break" --front-csv "$dir/f.csv"
 bad "unwritable vtk" --vtk /nonexistent-dir/vtk
 bad "unwritable front" --preset water --front-csv /nonexistent-dir/f.csv
 bad "negative threads" --threads -1
+bad "unknown backend" --backend gpu
+# --backend cuda: refused with its reason where no GPU can run it (this build may or may not have
+# the backend); where one can, it runs and reports its backend.
+if "$bin" sph --backend cuda --particles 500 --frames 2 --json > "$dir/cuda.json" 2> "$dir/err.txt"; then
+  grep -q '"backend":"cuda"' "$dir/cuda.json" || fail "a cuda run does not report its backend"
+else
+  bad "cuda where it cannot run" --backend cuda
+  grep -q -- "--backend cuda: " "$dir/err.txt" || fail "cuda refusal without its reason"
+fi
 echo "sph_cli: ok"

@@ -33,6 +33,7 @@
 #include "hpcplan/plan/fluid_planner.hpp"
 #include "hpcplan/sim/metrics.hpp"
 #include "hpcplan/sim/robot.hpp"
+#include "hpcplan/sph/fluid.hpp"
 #include "hpcplan/sph/fluid_state.hpp"
 #include "hpcplan/sph/presets.hpp"
 
@@ -56,6 +57,7 @@ struct SimOptions {
   double max_wall_s = 0.0;   // wall seconds before a run is failed; 0 = none
   double goal_radius = 0.2;  // 4 particle radii of 0.05
   RobotParams robot;
+  std::string backend = "cpu";  // the fluid's: cpu or cuda (sph::make_backend)
   // Scenes of one's own (tests, studies): when set, builds each run's fluid from the run's seed
   // instead of the seed preset, and `place` (if set) picks the robot's and goal's particles.
   std::function<sph::FluidState(std::uint64_t seed)> make_fluid;
@@ -65,8 +67,9 @@ struct SimOptions {
 // What the frame loop shows an observer after each frame (for VTK and pictures).
 struct FrameView {
   int run = 0;
-  std::uint64_t frame = 0;  // since the robot and goal were placed
-  const sph::FluidState* fluid = nullptr;
+  std::uint64_t frame = 0;                 // since the robot and goal were placed
+  const sph::FluidState* fluid = nullptr;  // positions, ids and wall flags current
+  const sph::Fluid* owner = nullptr;       // owner->full_state(): every array (VTK)
   env::Vec<3> robot{}, goal{};
   const std::vector<env::Vec<3>>* plan = nullptr;   // the path the robot follows (may be empty)
   const std::vector<env::Vec<3>>* trail = nullptr;  // where the robot has been

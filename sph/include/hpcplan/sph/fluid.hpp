@@ -4,12 +4,14 @@
 // where the boundaries keep it.
 //
 // Threads: one thread drives a Fluid; the backend parallelises inside a substep. Readers on
-// other threads copy what they need between frames (the simulator's snapshot).
+// other threads copy what they need between frames (the simulator's snapshot); state() is
+// called on the driving thread only (it may complete a copy from the GPU).
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "hpcplan/sph/fluid_state.hpp"
 #include "hpcplan/sph/step_backend.hpp"
@@ -28,16 +30,24 @@ struct FrameReport {
 class Fluid {
  public:
   Fluid(FluidState initial, std::unique_ptr<StepBackend> backend);
+  // The backend by name ("cpu" or "cuda", see make_backend), made for this fluid.
+  Fluid(FluidState initial, std::string_view backend);
 
   // Advances by one frame (params.frame_dt). `after_substep`, if given, sees the state after
   // every substep (the dam break's surge front is read this way).
   FrameReport advance_frame(const std::function<void(const FluidState&)>& after_substep = {});
 
-  const FluidState& state() const { return state_; }
+  // The state with its positions, ids and wall flags current (see step_backend.hpp); with the
+  // CPU backend every array is current.
+  const FluidState& state() const;
+  // The state with every array current (a GPU backend copies them back: reports, VTK, tests).
+  const FluidState& full_state() const;
   const StepBackend& backend() const { return *backend_; }
 
  private:
-  FluidState state_;
+  // mutable: a backend that keeps the particles elsewhere completes its copies into it when a
+  // reader asks (state() and full_state() are logically const).
+  mutable FluidState state_;
   std::unique_ptr<StepBackend> backend_;
   std::uint64_t frame_ = 0;
 };

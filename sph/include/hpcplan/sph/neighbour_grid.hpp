@@ -66,6 +66,9 @@ class NeighbourGrid {
   std::span<const std::uint32_t> cell_order() const { return buckets_.all_items(); }
 
   double support() const { return support_; }
+  // Cells per axis, and cells per unit length per axis (a GPU backend builds the same grid).
+  const std::array<std::int64_t, 3>& cells_per_axis() const { return n_; }
+  const Vec3& inverse_cell() const { return inv_cell_; }
   std::uint64_t cells() const { return shape_.size(); }
   const Box3& region() const { return region_; }
 
