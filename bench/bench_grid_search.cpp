@@ -67,6 +67,35 @@ void BM_DefaultProblem(benchmark::State& state) {
 }
 BENCHMARK(BM_DefaultProblem)->DenseRange(2, 10, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// One query of the default problem on a field built once (as the OMPL adapter runs it), with
+// the hash map and with the dense store the planner picks for small lattices: the whole
+// solve_grid call per iteration (report included), so the figure is what a caller waits for.
+template <class MapPolicy>
+void BM_Query(benchmark::State& state) {
+  const GridProblem p = default_problem(static_cast<int>(state.range(0)));
+  const GogField field(p.dims, p.extent, p.gog);
+  GridSearchOptions o;
+  o.max_states = 100'000'000;  // as the adapter sets it once (no /proc read per query)
+  std::uint64_t expanded = 0;
+  for (auto _ : state) {
+    const GridReport r = solve_grid_with<MapPolicy>(field, p, o);
+    benchmark::DoNotOptimize(r.cost);
+    expanded += r.counters.expanded;
+  }
+  state.counters["expanded"] =
+      benchmark::Counter(static_cast<double>(expanded) / state.iterations());
+}
+BENCHMARK(BM_Query<search::AbslFlatMap>)
+    ->Name("Query/absl")
+    ->DenseRange(2, 3, 1)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK(BM_Query<search::StampedDensePolicy>)
+    ->Name("Query/dense")
+    ->DenseRange(2, 3, 1)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+
 // Expansions of A* with each heuristic on a denser field where the search must work.
 void BM_Heuristic(benchmark::State& state) {
   GridProblem p = default_problem(static_cast<int>(state.range(0)));

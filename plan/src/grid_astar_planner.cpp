@@ -10,6 +10,7 @@
 #include <ompl/geometric/PathSimplifier.h>
 
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/core/memory.hpp"
 #include "hpcplan/env/gog_world.hpp"
 #include "hpcplan/sampling/path_tightening.hpp"
 #include "hpcplan/sampling/ptc_stop.hpp"
@@ -65,10 +66,19 @@ ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition&
   options.heuristic = heuristic_;
   options.time_limit_s = time_limit_s_;
   options.keep_path = true;
+  // The state budget from the machine's memory, read once: reading it costs a /proc parse,
+  // which a 2D query would feel.
+  if (max_states_ == 0) {
+    const std::uint64_t avail = available_memory_bytes();
+    const KeyLayout layout(problem.dims, problem.extent);
+    const int words = layout.words() <= 1 ? 1 : layout.words() <= 2 ? 2 : 4;
+    max_states_ = avail ? avail / 2 / bytes_per_state(words) : 100'000'000;
+  }
+  options.max_states = max_states_;
   {
     const sampling::PtcStopSource ptc_stop(ptc);
     options.cancel = ptc_stop.token();
-    last_ = solve_grid(problem, options);
+    last_ = solve_grid(field, problem, options);  // the space's own field, built once
   }
   space_.checks->add(last_.counters.collision_checks);
   if (last_.status == search::Status::timeout || last_.status == search::Status::cancelled)

@@ -10,8 +10,22 @@
 
 namespace hpcplan {
 
+bool dense_visited_fits(int dims, int extent) {
+  const KeyLayout layout(dims, extent);
+  return layout.words() == 1 && layout.bits() * dims <= kDenseVisitedBits;
+}
+
 GridReport solve_grid(const GridProblem& problem, const GridSearchOptions& options) {
+  if (dense_visited_fits(problem.dims, problem.extent))
+    return solve_grid_with<search::StampedDensePolicy>(problem, options);
   return solve_grid_with<search::DefaultVisitedMap>(problem, options);
+}
+
+GridReport solve_grid(const GogField& field, const GridProblem& problem,
+                      const GridSearchOptions& options) {
+  if (dense_visited_fits(problem.dims, problem.extent))
+    return solve_grid_with<search::StampedDensePolicy>(field, problem, options);
+  return solve_grid_with<search::DefaultVisitedMap>(field, problem, options);
 }
 
 GridReport prepare_grid_report(const GridProblem& problem, const GridSearchOptions& options,

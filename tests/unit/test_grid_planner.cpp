@@ -5,6 +5,7 @@
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/graph/lattice_distance.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
+#include "hpcplan/plan/grid_planner_impl.hpp"
 
 namespace {
 
@@ -145,3 +146,35 @@ TEST(GridPlanner, StartInsideAnObstacleIsRejected) {
 }
 
 }  // namespace
+
+// The dense visited store (small lattices) and the hash map give the same search: the same
+// cost, path and expansions, for every algorithm and in 2D to 4D; the store is reused across
+// runs (its arrays come back from the pool with a new generation), so a second run in the same
+// process must not see the first's states.
+TEST(GridPlanner, DenseVisitedStoreEqualsTheHashMap) {
+  ASSERT_TRUE(dense_visited_fits(2, 100));
+  ASSERT_FALSE(dense_visited_fits(4, 100));  // 28 bits
+  ASSERT_TRUE(dense_visited_fits(4, 40));
+  for (const int dims : {2, 3, 4})
+    for (const GridAlgorithm a :
+         {GridAlgorithm::astar, GridAlgorithm::dijkstra, GridAlgorithm::wastar, GridAlgorithm::bfs})
+      for (const std::uint64_t seed : {1u, 7u}) {
+        GridProblem p;
+        p.dims = dims;
+        p.extent = dims == 2 ? 100 : dims == 3 ? 40 : 14;
+        p.gog.seed = seed;
+        GridSearchOptions o;
+        o.algorithm = a;
+        o.keep_path = true;
+        const GridReport hash = solve_grid_with<search::DefaultVisitedMap>(p, o);
+        const GridReport dense = solve_grid(p, o), again = solve_grid(p, o);
+        EXPECT_EQ(hash.visited_map, search::DefaultVisitedMap::name);
+        EXPECT_EQ(dense.visited_map, search::StampedDensePolicy::name);
+        for (const GridReport* r : {&dense, &again}) {
+          EXPECT_EQ(r->status, hash.status) << dims << "D " << to_string(a);
+          EXPECT_EQ(r->cost, hash.cost) << dims << "D " << to_string(a);
+          EXPECT_EQ(r->path, hash.path) << dims << "D " << to_string(a);
+          EXPECT_EQ(r->counters.expanded, hash.counters.expanded) << dims << "D " << to_string(a);
+        }
+      }
+}

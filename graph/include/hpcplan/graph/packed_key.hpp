@@ -35,6 +35,12 @@ constexpr std::uint64_t hash_key(const PackedKey<W>& k) noexcept {
   return h;
 }
 
+// A one-word key's packed bits as an index into a dense table (search/stamped_dense_map.hpp):
+// below 2^(bits x dims) for a lattice whose layout fits one word.
+constexpr std::uint64_t dense_index(const PackedKey<1>& k) noexcept {
+  return k.w[0];
+}
+
 template <int W>
 struct PackedKeyHash {
   std::size_t operator()(const PackedKey<W>& k) const noexcept { return hash_key(k); }

@@ -12,6 +12,7 @@
 // Parameters (declared, so Benchmark logs them): weight (1 = A*), heuristic (lattice |
 // euclidean), smoothing (0/1: simplify + tighten), time_limit (s, 0 = none; the search also stops
 // when OMPL's termination condition fires during shortcutting).
+#include <cstdint>
 #include <string>
 
 #include <ompl/base/Planner.h>
@@ -49,6 +50,7 @@ class GridAStarPlanner : public ompl::base::Planner {
   HeuristicKind heuristic_ = HeuristicKind::lattice;
   bool shortcut_ = true;
   double time_limit_s_ = 0.0;
+  std::uint64_t max_states_ = 0;  // the search's state budget, set at the first solve
   GridReport last_;
 };
 

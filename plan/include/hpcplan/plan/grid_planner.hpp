@@ -53,7 +53,17 @@ struct GridReport : Result<std::vector<int>> {
   double setup_ms = 0.0;
 };
 
+// The serial search. Its visited map is chosen by the lattice's size: where the packed keys fit
+// kDenseVisitedBits bits (2^26 states: 2D up to extent 8192, 3D up to 256), flat arrays
+// indexed by the key, reused across runs (search/stamped_dense_map.hpp); else a hash map.
+// The report's visited_map names the one used.
+inline constexpr int kDenseVisitedBits = 26;
+bool dense_visited_fits(int dims, int extent);
 GridReport solve_grid(const GridProblem& problem, const GridSearchOptions& options);
+// The same on a field already built (problem.gog must be its parameters): a planner solving
+// many queries on one field (the OMPL adapter) builds it once.
+GridReport solve_grid(const GogField& field, const GridProblem& problem,
+                      const GridSearchOptions& options);
 
 // The parts of solving every engine shares (serial and distributed): describes the problem
 // and options in a report, resolves start and goal (InputError if blocked), and sets the

@@ -1,6 +1,7 @@
 #pragma once
 // The grid planner's implementation, as templates over the visited-map policy so benchmarks
 // can run the identical planner with another hash map. Users call solve_grid().
+#include <type_traits>
 
 #include "hpcplan/core/progress.hpp"
 #include "hpcplan/core/stopwatch.hpp"
@@ -8,6 +9,7 @@
 #include "hpcplan/graph/lattice_heuristic.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
 #include "hpcplan/search/best_first.hpp"
+#include "hpcplan/search/stamped_dense_map.hpp"
 
 namespace hpcplan {
 namespace detail {
@@ -52,6 +54,8 @@ void run_search(const GogField& field, const GridProblem& problem, const GridSea
   const auto start = graph.pack(report.start);
   const auto goal = graph.pack(report.goal);
   auto eo = engine_options(o, report.weight, report.max_states);
+  if constexpr (std::is_same_v<MapPolicy, search::StampedDensePolicy>)
+    eo.dense_keys = std::uint64_t{1} << (graph.layout().bits() * problem.dims);
   RunProgress progress("hpcplan grid " + report.algorithm, report.max_states);
   eo.progress = [&progress](std::uint64_t expanded, std::uint64_t stored) {
     progress.update(expanded, stored);
@@ -71,27 +75,40 @@ void run_search(const GogField& field, const GridProblem& problem, const GridSea
 
 }  // namespace detail
 
-// The planner with a chosen visited map; solve_grid() is this with the default map.
+// The planner with a chosen visited map on a field already built (problem.gog must be the
+// field's parameters). The dense policy serves one-word keys only; wider ones fall back to the
+// default hash map.
 template <class MapPolicy>
-GridReport solve_grid_with(const GridProblem& problem, const GridSearchOptions& options) {
+GridReport solve_grid_with(const GogField& field, const GridProblem& problem,
+                           const GridSearchOptions& options, double setup_ms = 0.0) {
   validate(problem, options);
   Stopwatch setup;
-  const GogField field(problem.dims, problem.extent, problem.gog);
   GridReport report = prepare_grid_report(problem, options, field, 1);
-  report.setup_ms = setup.milliseconds();
+  report.setup_ms = setup_ms + setup.milliseconds();
+  using Wide = std::conditional_t<std::is_same_v<MapPolicy, search::StampedDensePolicy>,
+                                  search::DefaultVisitedMap, MapPolicy>;
   switch (report.key_words) {
     case 1:
       detail::run_search<MapPolicy, 1>(field, problem, options, report);
       break;
     case 2:
-      detail::run_search<MapPolicy, 2>(field, problem, options, report);
+      detail::run_search<Wide, 2>(field, problem, options, report);
       break;
     default:
-      detail::run_search<MapPolicy, 4>(field, problem, options, report);
+      detail::run_search<Wide, 4>(field, problem, options, report);
       break;
   }
   finish_grid_report(report);
   return report;
+}
+
+// The planner with a chosen visited map, building the problem's field.
+template <class MapPolicy>
+GridReport solve_grid_with(const GridProblem& problem, const GridSearchOptions& options) {
+  validate(problem, options);
+  Stopwatch setup;
+  const GogField field(problem.dims, problem.extent, problem.gog);
+  return solve_grid_with<MapPolicy>(field, problem, options, setup.milliseconds());
 }
 
 }  // namespace hpcplan
