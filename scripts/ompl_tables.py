@@ -18,7 +18,9 @@ ORDER = ["gridastar", "gridastar_lattice", "gridastar_mpi2", "fmt", "fmt_radius"
          "abitstar", "aitstar", "rrtconnect", "rrtstar", "informedrrtstar", "prmstar"]
 LABEL = {"gridastar": "Grid A* + shortcut", "gridastar_lattice": "Grid A* (lattice path)",
          "gridastar_mpi2": "Grid A*, 2 MPI ranks", "fmt": "FMT* (k-nearest)",
-         "fmt_radius": "FMT* (radius)", "bitstar": "BIT*"}
+         "fmt_radius": "FMT* (radius)", "bitstar": "BIT*", "abitstar": "ABIT*", "aitstar": "AIT*",
+         "rrtconnect": "RRT-Connect"}
+PEERS = ["bitstar", "abitstar", "aitstar", "rrtconnect"]
 
 
 def num(x):
@@ -175,6 +177,30 @@ def main():
                     ["d", "grid+shortcut ms", "grid lattice ms", "BIT* first ms",
                      "ratio (shortcut)", "ratio (lattice)", "grid+shortcut quality",
                      "BIT* final quality", "grid ≤ BIT* final"], lines))
+
+    # Peers side by side: every planner's median time to a first solution and success rate on
+    # the same world, and each peer's time over the grid planner's (lattice path and smoothed).
+    shown = [p for p in ["gridastar_lattice", "gridastar"] + PEERS if p in planners]
+    if len(shown) > 1:
+        lines = []
+        for d in dims:
+            cells = []
+            for p in shown:
+                rs = runs(p, d)
+                t = med([r["time_first_s"] * 1e3 for r in rs if r["solved"]])
+                rate = sum(r["solved"] for r in rs) / len(rs) if rs else None
+                cells.append(f"{fmt(t, '.2f')} ({fmt(rate, '.0%')})" if rs else "-")
+            gl = med([r["time_first_s"] for r in runs("gridastar_lattice", d) if r["solved"]])
+            gs = med([r["time_first_s"] for r in runs("gridastar", d) if r["solved"]])
+            for p in [p for p in PEERS if p in shown]:
+                t = med([r["time_first_s"] for r in runs(p, d) if r["solved"]])
+                cells.append(f"{fmt(t / gl if t and gl else None, '.1f')} / "
+                             f"{fmt(t / gs if t and gs else None, '.1f')}")
+            lines.append([f"{d}D"] + cells)
+        header = ["d"] + [f"{LABEL.get(p, p)} ms (solved)" for p in shown] + \
+                 [f"{LABEL.get(p, p)} ÷ grid lattice / smoothed" for p in PEERS if p in shown]
+        print(table("Peers side by side — median time to a first solution (ms) and success rate; "
+                    "ratios > 1: the grid planner is faster", header, lines))
 
     if a.plots:
         import matplotlib
