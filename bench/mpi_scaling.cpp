@@ -11,6 +11,10 @@
 // the reported speedup is the median of the per-round ratios (medians of the times are
 // reported too). Rounds alternate which side runs first, since the second finds warm memory. One
 // CSV row per configuration (rank 0; appended to --csv, or stdout).
+// The spread: the lowest and highest per-round speedups. With --ceiling, each round also
+// yields the ceiling of that round and the distributed speedup as a fraction of it; the row
+// reports that fraction's median, lowest and highest, so a drifting machine shows as spread
+// instead of moving the median unseen.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -30,8 +34,15 @@ namespace {
 using namespace hpcplan;
 
 double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
+}
+double lowest(const std::vector<double>& v) {
+  return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end());
+}
+double highest(const std::vector<double>& v) {
+  return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
 }
 
 }  // namespace
@@ -90,7 +101,8 @@ int main(int argc, char** argv) {
             configs.push_back(d);
           }
     std::vector<double> serial_t;
-    std::vector<std::vector<double>> dist_t(configs.size()), ratio(configs.size());
+    std::vector<std::vector<double>> dist_t(configs.size()), ratio(configs.size()),
+        of_ceiling(configs.size());
     std::vector<GridReport> last(configs.size());
     std::uint64_t serial_expanded = 0;
     double serial_cost = 0.0;
@@ -129,8 +141,10 @@ int main(int argc, char** argv) {
       if (!serial_first) time_serial();
       time_crowded();
       if (!no_serial && root)
-        for (std::size_t c = 0; c < configs.size(); ++c)
+        for (std::size_t c = 0; c < configs.size(); ++c) {
           ratio[c].push_back(serial_t.back() / dist_t[c].back());
+          if (!crowd_ratio.empty()) of_ceiling[c].push_back(ratio[c].back() / crowd_ratio.back());
+        }
       if (progress) progress->step("round " + std::to_string(r + 1));
     }
     const double serial_ms = no_serial || !root ? 0.0 : median(serial_t);
@@ -149,18 +163,19 @@ int main(int argc, char** argv) {
       const double ex = static_cast<double>(std::max<std::uint64_t>(1, g.counters.expanded));
       const double speedup = no_serial ? 0.0 : median(ratio[c]);
       char line[1024];
-      std::snprintf(line, sizeof line,
-                    "%s,%d,%d,%d,%.2f,%s,%s,%zu,%d,%d,%d,%s,%.6f,%llu,%llu,%.3f,%.3f,%.3f,%.3f,"
-                    "%.3f,%.5f,%.2f,%.3f,%.3f\n",
-                    label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
-                    g.scheme.c_str(), configs[c].batch, configs[c].coarsen_shift,
-                    configs[c].sent_filter_log2, repeats,
-                    std::string(search::to_string(g.status)).c_str(), g.cost,
-                    static_cast<unsigned long long>(g.counters.expanded),
-                    static_cast<unsigned long long>(serial_expanded), serial_ms, med,
-                    no_serial ? 0.0 : serial_ms / med, speedup, speedup / comm.size(),
-                    messages / ex, bytes / ex, workload_deviation_percent(g.per_rank),
-                    serial_expanded ? ex / static_cast<double>(serial_expanded) : 0.0);
+      std::snprintf(
+          line, sizeof line,
+          "%s,%d,%d,%d,%.2f,%s,%s,%zu,%d,%d,%d,%s,%.6f,%llu,%llu,%.3f,%.3f,%.3f,%.3f,"
+          "%.3f,%.5f,%.2f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
+          label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
+          g.scheme.c_str(), configs[c].batch, configs[c].coarsen_shift, configs[c].sent_filter_log2,
+          repeats, std::string(search::to_string(g.status)).c_str(), g.cost,
+          static_cast<unsigned long long>(g.counters.expanded),
+          static_cast<unsigned long long>(serial_expanded), serial_ms, med,
+          no_serial ? 0.0 : serial_ms / med, speedup, speedup / comm.size(), messages / ex,
+          bytes / ex, workload_deviation_percent(g.per_rank),
+          serial_expanded ? ex / static_cast<double>(serial_expanded) : 0.0, lowest(ratio[c]),
+          highest(ratio[c]), median(of_ceiling[c]), lowest(of_ceiling[c]), highest(of_ceiling[c]));
       rows << line;
       std::fputs(line, stderr);
     }
@@ -168,12 +183,13 @@ int main(int argc, char** argv) {
       char line[512];
       std::snprintf(line, sizeof line,
                     "%s,%d,%d,%d,%.2f,%s,ceiling,0,0,0,%d,solved,%.6f,%llu,%llu,%.3f,%.3f,%.3f,"
-                    "%.3f,%.3f,0,0,0,1\n",
+                    "%.3f,%.3f,0,0,0,1,%.3f,%.3f,1,1,1\n",
                     label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
                     repeats, serial_cost, static_cast<unsigned long long>(serial_expanded),
                     static_cast<unsigned long long>(serial_expanded), serial_ms,
                     serial_ms * comm.size() / median(crowd_ratio), median(crowd_ratio),
-                    median(crowd_ratio), median(crowd_ratio) / comm.size());
+                    median(crowd_ratio), median(crowd_ratio) / comm.size(), lowest(crowd_ratio),
+                    highest(crowd_ratio));
       rows << line;
       std::fputs(line, stderr);
     }
@@ -183,7 +199,7 @@ int main(int argc, char** argv) {
           "cost,expanded,serial_expanded,serial_median_ms,median_ms,ratio_of_medians,"
           "speedup_vs_serial,efficiency,"
           "messages_per_expansion,bytes_per_expansion,workload_deviation_percent,"
-          "search_overhead\n";
+          "search_overhead,speedup_min,speedup_max,of_ceiling,of_ceiling_min,of_ceiling_max\n";
       if (csv.empty()) {
         std::fputs(header, stdout);
         std::fputs(rows.str().c_str(), stdout);

@@ -3,7 +3,8 @@
 # 10; Dijkstra, sized to take >= 2 s on one rank), state-hash and coarse-cell ownership,
 # asynchronous vs bulk-synchronous, the machine's own ceiling (the serial search on both cores
 # at once), and the effect of the batch size at 6D. Every row is timed against the serial
-# engine in the same mpirun job, interleaved round by round (median of --repeats ratios). Writes
+# engine in the same mpirun job, interleaved round by round (median of --repeats ratios, with
+# their lowest and highest, and the fraction of the ceiling measured in the same rounds). Writes
 # results/strong_scaling.csv and prints a Markdown summary.
 # Usage: bash bench/strong_scaling.sh [repeats]
 set -euo pipefail

@@ -11,6 +11,8 @@
 namespace hpcplan {
 
 bool dense_visited_fits(int dims, int extent) {
+  // Out-of-range problems are refused by validate(); they must not reach a key layout here.
+  if (dims < 1 || dims > kMaxDims || extent < 2 || extent > kMaxExtent) return false;
   const KeyLayout layout(dims, extent);
   return layout.words() == 1 && layout.bits() * dims <= kDenseVisitedBits;
 }

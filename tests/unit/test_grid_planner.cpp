@@ -145,8 +145,6 @@ TEST(GridPlanner, StartInsideAnObstacleIsRejected) {
   }
 }
 
-}  // namespace
-
 // The dense visited store (small lattices) and the hash map give the same search: the same
 // cost, path and expansions, for every algorithm and in 2D to 4D; the store is reused across
 // runs (its arrays come back from the pool with a new generation), so a second run in the same
@@ -178,3 +176,14 @@ TEST(GridPlanner, DenseVisitedStoreEqualsTheHashMap) {
         }
       }
 }
+
+TEST(GridPlanner, DenseStoreChoiceRefusesImpossibleLattices) {
+  EXPECT_FALSE(dense_visited_fits(0, 10));
+  EXPECT_FALSE(dense_visited_fits(17, 10));
+  EXPECT_FALSE(dense_visited_fits(2, 1));
+  EXPECT_FALSE(dense_visited_fits(2, 70000));
+  EXPECT_TRUE(dense_visited_fits(2, 8192));
+  EXPECT_FALSE(dense_visited_fits(2, 8193));  // 14 bits per axis: 28
+}
+
+}  // namespace
