@@ -7,6 +7,7 @@
 #include "hpcplan/graph/lattice_heuristic.hpp"
 #include "hpcplan/partition/ownership.hpp"
 #include "hpcplan/plan/grid_planner_impl.hpp"
+#include "hpcplan/search/stamped_dense_map.hpp"
 
 namespace hpcplan::dist {
 
@@ -56,7 +57,12 @@ void run_distributed(const GogField& field, const GridProblem& problem, const Gr
     per_rank = (o.max_states + static_cast<std::uint64_t>(p) - 1) / static_cast<std::uint64_t>(p);
   else
     report.max_states = per_rank * static_cast<std::uint64_t>(p);
-  const auto eo = hpcplan::detail::engine_options(o, report.weight, per_rank);
+  auto eo = hpcplan::detail::engine_options(o, report.weight, per_rank);
+  // The serial engine's rule: small one-word lattices keep their states in the dense store
+  // (each rank faults in only the pages its own states fall on).
+  const bool dense = W == 1 && dense_visited_fits(problem.dims, problem.extent);
+  if (dense) eo.dense_keys = std::uint64_t{1} << (graph.layout().bits() * problem.dims);
+  report.visited_map = dense ? search::StampedDensePolicy::name : search::DefaultVisitedMap::name;
 
   DistOptions d;
   d.scheme = o.algorithm == GridAlgorithm::bfs ? Scheme::level_sync : dist.scheme;
@@ -69,9 +75,14 @@ void run_distributed(const GogField& field, const GridProblem& problem, const Gr
 
   auto search = [&](const auto& h) {
     using H = std::remove_cvref_t<decltype(h)>;
-    DistributedSearch<search::DefaultVisitedMap, LatticeGraph<W>, H, partition::Ownership<W>>
-        engine(graph, h, owner, comm, eo, d);
-    return engine.run(start, goal);
+    auto with = [&]<class Map>(Map) {
+      DistributedSearch<Map, LatticeGraph<W>, H, partition::Ownership<W>> engine(graph, h, owner,
+                                                                                 comm, eo, d);
+      return engine.run(start, goal);
+    };
+    if constexpr (W == 1)
+      if (dense) return with(search::StampedDensePolicy{});
+    return with(search::DefaultVisitedMap{});
   };
   const auto r =
       hpcplan::detail::with_heuristic<W>(o, problem, graph.layout(), report.goal, search);
@@ -97,7 +108,6 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
   GridReport report = prepare_grid_report(problem, options, field, comm.ranks_on_node());
   report.setup_ms = setup.milliseconds();
   report.ranks = comm.size();
-  report.visited_map = search::DefaultVisitedMap::name;
   report.coarsen_shift = dist.coarsen_shift;
   report.batch = dist.batch;
   report.batch_age_ms = dist.batch_age_ms;
