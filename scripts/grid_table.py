@@ -29,4 +29,6 @@ if any(r.get("serial_reference") for r in rows):
     print()
     print("The seed's default problems take milliseconds: at that size the ranks spend more time starting,\n"
           "exchanging states and agreeing to stop than searching (and A* explores more states when the\n"
-          "order of expansion is spread over ranks), so only the last row, a search of seconds, speeds up.")
+          "order of expansion is spread over ranks). Even the last row, a search of seconds, runs slower on\n"
+          "2 ranks than the serial engine here, whose dense visited store makes its expansions about twice\n"
+          "as cheap as a rank's (docs/PERFORMANCE.md, issue 17).")
