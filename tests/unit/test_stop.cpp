@@ -83,6 +83,33 @@ TEST(Stop, AnotherThreadCancelsAGridSearchWithinMilliseconds) {
   EXPECT_LT(*std::min_element(latencies.begin(), latencies.end()), 10.0);
 }
 
+// The dense visited store's pool lends arrays to concurrent searches on several threads (one
+// set each, returned under a mutex). Four threads solving small lattices at once, eight times
+// each, must each find exactly the serial answer; under ThreadSanitizer (label threads) this
+// also checks the pool's hand-offs.
+TEST(Stop, ConcurrentSearchesShareTheDenseStorePool) {
+  GridProblem p;
+  p.dims = 3;
+  p.extent = 40;
+  ASSERT_TRUE(dense_visited_fits(p.dims, p.extent));
+  const GridReport reference = solve_grid(p, GridSearchOptions{});
+  ASSERT_EQ(reference.status, Status::solved);
+  std::atomic<int> wrong{0};
+  {
+    std::vector<std::jthread> threads;
+    for (int t = 0; t < 4; ++t)
+      threads.emplace_back([&, t] {
+        for (int k = 0; k < 8; ++k) {
+          GridSearchOptions o;
+          o.algorithm = (t + k) % 2 ? GridAlgorithm::astar : GridAlgorithm::dijkstra;
+          const GridReport r = solve_grid(p, o);
+          if (r.status != Status::solved || r.cost != reference.cost) ++wrong;
+        }
+      });
+  }
+  EXPECT_EQ(wrong.load(), 0);
+}
+
 // OMPL's termination condition, evaluated on the watcher thread, fires the token a search
 // polls; a run that ends first stops the watcher without the condition ever turning true.
 TEST(Stop, OmplTerminationConditionFiresTheToken) {

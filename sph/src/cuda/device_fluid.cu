@@ -7,8 +7,8 @@
 //   - neighbours are found from the cell ranges in every pass (no lists: the GPU re-reads the
 //     ranges faster than it could store 96 indices per particle);
 //   - sums run in cell order, so results match the CPU's to round-off, not bit for bit.
-#include <cub/device/device_radix_sort.cuh>
 #include <cuda_runtime.h>
+#include <cub/device/device_radix_sort.cuh>
 
 #include <cmath>
 #include <cstring>
@@ -51,7 +51,8 @@ T* device_alloc(std::size_t n) {
 
 Arrays alloc_arrays(std::size_t n) {
   Arrays a;
-  double** d[] = {&a.x, &a.y, &a.z, &a.vx, &a.vy, &a.vz, &a.ax, &a.ay, &a.az, &a.rho, &a.drho, &a.p};
+  double** d[] = {&a.x,  &a.y,  &a.z,  &a.vx,  &a.vy,   &a.vz,
+                  &a.ax, &a.ay, &a.az, &a.rho, &a.drho, &a.p};
   for (double** q : d) *q = device_alloc<double>(n);
   a.nb = device_alloc<std::uint32_t>(n);
   a.id = device_alloc<std::uint32_t>(n);
@@ -59,8 +60,20 @@ Arrays alloc_arrays(std::size_t n) {
   return a;
 }
 
+// fn(device array, host array, bytes per element) for each of the 15 arrays: the one list
+// both the upload and the download walk.
+template <class Fn>
+void for_each_array(const Arrays& d, const HostParticles& h, Fn&& fn) {
+  fn(d.x, h.x, 8), fn(d.y, h.y, 8), fn(d.z, h.z, 8);
+  fn(d.vx, h.vx, 8), fn(d.vy, h.vy, 8), fn(d.vz, h.vz, 8);
+  fn(d.ax, h.ax, 8), fn(d.ay, h.ay, 8), fn(d.az, h.az, 8);
+  fn(d.rho, h.rho, 8), fn(d.drho, h.drho, 8), fn(d.p, h.p, 8);
+  fn(d.nb, h.neighbours, 4), fn(d.id, h.id, 4), fn(d.wall, h.wall, 1);
+}
+
 void free_arrays(Arrays& a) {
-  void* d[] = {a.x, a.y, a.z, a.vx, a.vy, a.vz, a.ax, a.ay, a.az, a.rho, a.drho, a.p, a.nb, a.id, a.wall};
+  void* d[] = {a.x,  a.y,   a.z,    a.vx, a.vy, a.vz, a.ax,  a.ay,
+               a.az, a.rho, a.drho, a.p,  a.nb, a.id, a.wall};
   for (void* q : d) cudaFree(q);
 }
 
@@ -141,9 +154,9 @@ __global__ void cell_keys(Arrays a, std::size_t n, DeviceGrid g, std::uint32_t* 
                           std::uint32_t* index) {
   const std::size_t i = blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x;
   if (i >= n) return;
-  key[i] = static_cast<std::uint32_t>(cell_coordinate(a.x[i], 0, g) +
-                                      g.n[0] * (cell_coordinate(a.y[i], 1, g) +
-                                                g.n[1] * cell_coordinate(a.z[i], 2, g)));
+  key[i] = static_cast<std::uint32_t>(
+      cell_coordinate(a.x[i], 0, g) +
+      g.n[0] * (cell_coordinate(a.y[i], 1, g) + g.n[1] * cell_coordinate(a.z[i], 2, g)));
   index[i] = static_cast<std::uint32_t>(i);
 }
 
@@ -205,22 +218,21 @@ __global__ void seed_forces(Arrays a, std::size_t n, Grid grid, DeviceParams f) 
   const double m = f.particle_mass;
   const double pi = a.p[i], vxi = a.vx[i], vyi = a.vy[i], vzi = a.vz[i];
   double fx = 0.0, fy = 0.0, fz = 0.0;
-  for_each_neighbour(static_cast<std::uint32_t>(i), a, grid.g, grid.start, grid.end, grid.support2,
-                     [&](std::uint32_t j, double dx, double dy, double dz, double r2) {
-                       const double r = sqrt(r2);
-                       const double inv_rho_j = 1.0 / a.rho[j];
-                       const double pj = a.p[j];
-                       if (r > 0.0 && (pi > 0.0 || pj > 0.0)) {
-                         const double d = h - r;
-                         const double dwdr = r >= h ? 0.0 : -3.0 * spiky * d * d;
-                         const double c = -m * 0.5 * (pi + pj) * inv_rho_j * dwdr / r;
-                         fx += c * dx, fy += c * dy, fz += c * dz;
-                       }
-                       const double c =
-                           f.viscosity * m * inv_rho_j * (r >= h ? 0.0 : lap * (h - r));
-                       fx += c * (a.vx[j] - vxi), fy += c * (a.vy[j] - vyi),
-                           fz += c * (a.vz[j] - vzi);
-                     });
+  for_each_neighbour(
+      static_cast<std::uint32_t>(i), a, grid.g, grid.start, grid.end, grid.support2,
+      [&](std::uint32_t j, double dx, double dy, double dz, double r2) {
+        const double r = sqrt(r2);
+        const double inv_rho_j = 1.0 / a.rho[j];
+        const double pj = a.p[j];
+        if (r > 0.0 && (pi > 0.0 || pj > 0.0)) {
+          const double d = h - r;
+          const double dwdr = r >= h ? 0.0 : -3.0 * spiky * d * d;
+          const double c = -m * 0.5 * (pi + pj) * inv_rho_j * dwdr / r;
+          fx += c * dx, fy += c * dy, fz += c * dz;
+        }
+        const double c = f.viscosity * m * inv_rho_j * (r >= h ? 0.0 : lap * (h - r));
+        fx += c * (a.vx[j] - vxi), fy += c * (a.vy[j] - vyi), fz += c * (a.vz[j] - vzi);
+      });
   const double inv_rho = 1.0 / a.rho[i];
   a.ax[i] = fx * inv_rho + f.gravity[0];
   a.ay[i] = fy * inv_rho + f.gravity[1];
@@ -479,8 +491,8 @@ struct DeviceFluid::Impl {
     }
     if (count > 0)
       ensure(cudaMemcpyAsync(boxes, host, sizeof(DeviceBox) * static_cast<std::size_t>(count),
-                            cudaMemcpyHostToDevice, compute),
-            "copy the boxes");
+                             cudaMemcpyHostToDevice, compute),
+             "copy the boxes");
   }
 };
 
@@ -523,8 +535,8 @@ DeviceFluid::DeviceFluid(const HostParticles& h, const DeviceParams& params, con
   m.cell_start = device_alloc<std::uint32_t>(m.cells);
   m.cell_end = device_alloc<std::uint32_t>(m.cells);
   ensure(cub::DeviceRadixSort::SortPairs(nullptr, m.sort_temp_bytes, m.key, m.key_sorted, m.index,
-                                        m.order, static_cast<int>(m.n), 0, m.key_bits, m.compute),
-        "size the sort");
+                                         m.order, static_cast<int>(m.n), 0, m.key_bits, m.compute),
+         "size the sort");
   m.sort_temp = device_alloc<char>(m.sort_temp_bytes);
   m.limits_dev = device_alloc<LimitBits>(1);
   m.problem_dev = device_alloc<unsigned long long>(1);
@@ -537,15 +549,9 @@ DeviceFluid::DeviceFluid(const HostParticles& h, const DeviceParams& params, con
   ensure(cudaMallocHost(&m.pid, (m.n > 0 ? m.n : 1) * sizeof(std::uint32_t)), "cudaMallocHost");
   ensure(cudaMallocHost(&m.pwall, m.n > 0 ? m.n : 1), "cudaMallocHost");
   // The one upload of the particles.
-  auto up = [&](void* to, const void* from, std::size_t size) {
-    ensure(cudaMemcpy(to, from, size * m.n, cudaMemcpyHostToDevice), "upload the particles");
-  };
-  const Arrays& a = m.cur;
-  up(a.x, h.x, 8), up(a.y, h.y, 8), up(a.z, h.z, 8);
-  up(a.vx, h.vx, 8), up(a.vy, h.vy, 8), up(a.vz, h.vz, 8);
-  up(a.ax, h.ax, 8), up(a.ay, h.ay, 8), up(a.az, h.az, 8);
-  up(a.rho, h.rho, 8), up(a.drho, h.drho, 8), up(a.p, h.p, 8);
-  up(a.nb, h.neighbours, 4), up(a.id, h.id, 4), up(a.wall, h.wall, 1);
+  for_each_array(m.cur, h, [&](void* device, const void* host, std::size_t size) {
+    ensure(cudaMemcpy(device, host, size * m.n, cudaMemcpyHostToDevice), "upload the particles");
+  });
 }
 
 DeviceFluid::~DeviceFluid() {
@@ -553,8 +559,8 @@ DeviceFluid::~DeviceFluid() {
   cudaDeviceSynchronize();
   free_arrays(m.cur);
   free_arrays(m.alt);
-  void* d[] = {m.key,       m.key_sorted, m.index,      m.order,       m.cell_start,
-               m.cell_end,  m.sort_temp,  m.boxes,      m.limits_dev,  m.problem_dev};
+  void* d[] = {m.key,      m.key_sorted, m.index, m.order,      m.cell_start,
+               m.cell_end, m.sort_temp,  m.boxes, m.limits_dev, m.problem_dev};
   for (void* q : d) cudaFree(q);
   void* pinned[] = {m.limits_host, m.problem_host, m.px, m.py, m.pz, m.pid, m.pwall};
   for (void* q : pinned) cudaFreeHost(q);
@@ -575,8 +581,8 @@ Limits DeviceFluid::limits() {
                                                              m.limits_dev);
   ensure(cudaGetLastError(), "reduce the limits");
   ensure(cudaMemcpyAsync(m.limits_host, m.limits_dev, sizeof(LimitBits), cudaMemcpyDeviceToHost,
-                        m.compute),
-        "copy the limits");
+                         m.compute),
+         "copy the limits");
   ensure(cudaStreamSynchronize(m.compute), "the substep");
   if (m.grid_timed) {
     float ms = 0.0f;
@@ -600,10 +606,10 @@ void DeviceFluid::substep(double dt, const double domain_lo[3], const double dom
   const unsigned blocks = blocks_for(m.n);
   ensure(cudaEventRecord(m.grid_begin, m.compute), "record an event");
   cell_keys<<<blocks, kBlock, 0, m.compute>>>(m.cur, m.n, m.grid, m.key, m.index);
-  ensure(cub::DeviceRadixSort::SortPairs(m.sort_temp, m.sort_temp_bytes, m.key, m.key_sorted,
-                                        m.index, m.order, static_cast<int>(m.n), 0, m.key_bits,
-                                        m.compute),
-        "sort by cell");
+  ensure(
+      cub::DeviceRadixSort::SortPairs(m.sort_temp, m.sort_temp_bytes, m.key, m.key_sorted, m.index,
+                                      m.order, static_cast<int>(m.n), 0, m.key_bits, m.compute),
+      "sort by cell");
   // The gather writes the other buffer set: if a copy-back still reads it, wait for that.
   if (m.copy_pending && m.copy_set == 1 - m.cur_set)
     ensure(cudaStreamWaitEvent(m.compute, m.copy_done, 0), "wait for the copy-back");
@@ -611,7 +617,7 @@ void DeviceFluid::substep(double dt, const double domain_lo[3], const double dom
   std::swap(m.cur, m.alt);
   m.cur_set = 1 - m.cur_set;
   ensure(cudaMemsetAsync(m.cell_start, 0xFF, m.cells * sizeof(std::uint32_t), m.compute),
-        "clear the cells");
+         "clear the cells");
   cell_ranges<<<blocks, kBlock, 0, m.compute>>>(m.key_sorted, m.n, m.cell_start, m.cell_end);
   ensure(cudaEventRecord(m.grid_end, m.compute), "record an event");
   m.grid_timed = true;
@@ -672,15 +678,9 @@ void DeviceFluid::download(HostParticles& h) {
     m.copy_pending = false;
   }
   ensure(cudaStreamSynchronize(m.compute), "the substep");
-  auto down = [&](void* to, const void* from, std::size_t size) {
-    ensure(cudaMemcpy(to, from, size * m.n, cudaMemcpyDeviceToHost), "download the particles");
-  };
-  const Arrays& a = m.cur;
-  down(h.x, a.x, 8), down(h.y, a.y, 8), down(h.z, a.z, 8);
-  down(h.vx, a.vx, 8), down(h.vy, a.vy, 8), down(h.vz, a.vz, 8);
-  down(h.ax, a.ax, 8), down(h.ay, a.ay, 8), down(h.az, a.az, 8);
-  down(h.rho, a.rho, 8), down(h.drho, a.drho, 8), down(h.p, a.p, 8);
-  down(h.neighbours, a.nb, 4), down(h.id, a.id, 4), down(h.wall, a.wall, 1);
+  for_each_array(m.cur, h, [&](const void* device, void* host, std::size_t size) {
+    ensure(cudaMemcpy(host, device, size * m.n, cudaMemcpyDeviceToHost), "download the particles");
+  });
 }
 
 Problem DeviceFluid::check(const double domain_lo[3], const double domain_hi[3],
@@ -690,15 +690,15 @@ Problem DeviceFluid::check(const double domain_lo[3], const double domain_hi[3],
   if (m.n == 0) return result;
   m.upload_boxes(boxes, box_count);
   ensure(cudaMemsetAsync(m.problem_dev, 0xFF, sizeof(unsigned long long), m.compute),
-        "clear the check");
+         "clear the check");
   Bounds d{};
   for (int k = 0; k < 3; ++k) d.lo[k] = domain_lo[k], d.hi[k] = domain_hi[k];
   check_kernel<<<blocks_for(m.n), kBlock, 0, m.compute>>>(m.cur, m.n, d, m.boxes, box_count,
                                                           m.problem_dev);
   ensure(cudaGetLastError(), "check the fluid");
   ensure(cudaMemcpyAsync(m.problem_host, m.problem_dev, sizeof(unsigned long long),
-                        cudaMemcpyDeviceToHost, m.compute),
-        "copy the check");
+                         cudaMemcpyDeviceToHost, m.compute),
+         "copy the check");
   ensure(cudaStreamSynchronize(m.compute), "check the fluid");
   const unsigned long long first = *m.problem_host;
   if (first != ~0ull) {
