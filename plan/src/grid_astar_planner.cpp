@@ -13,7 +13,6 @@
 #include "hpcplan/core/memory.hpp"
 #include "hpcplan/env/gog_world.hpp"
 #include "hpcplan/sampling/path_tightening.hpp"
-#include "hpcplan/sampling/ptc_stop.hpp"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -75,11 +74,8 @@ ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition&
     max_states_ = avail ? avail / 2 / bytes_per_state(words) : 100'000'000;
   }
   options.max_states = max_states_;
-  {
-    const sampling::PtcStopSource ptc_stop(ptc);
-    options.cancel = ptc_stop.token();
-    last_ = solve_grid(field, problem, options);  // the space's own field, built once
-  }
+  options.stop_when = [&ptc] { return ptc(); };
+  last_ = solve_grid(field, problem, options);  // the space's own field, built once
   space_.checks->add(last_.counters.collision_checks);
   if (last_.status == search::Status::timeout || last_.status == search::Status::cancelled)
     return ob::PlannerStatus::TIMEOUT;

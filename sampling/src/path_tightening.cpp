@@ -57,13 +57,12 @@ TighteningStats tighten_as(const ob::SpaceInformationPtr& si, og::PathGeometric&
   for (const ob::State* s : path.getStates()) points.push_back(point_of<D>(s));
   TighteningStats stats;
   stats.length_before = env::polyline_length<D>(points);
-  const PtcStopSource ptc_stop(ptc);
   env::TightenOptions o;
   o.max_segment = max_segment;
   o.max_rounds = max_rounds;
   o.tolerance = 1e-5;
   o.time_limit_s = 1e9;  // the termination condition is the budget
-  o.stop = Stop(ptc_stop.token());
+  o.stop = stop_on(ptc);
   stats.rounds = env::tighten_in_place(view, points, o);
   stats.length_after = env::polyline_length<D>(points);
   // Back into OMPL's path, reusing its states where there are enough.

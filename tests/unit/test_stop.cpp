@@ -110,24 +110,40 @@ TEST(Stop, ConcurrentSearchesShareTheDenseStorePool) {
   EXPECT_EQ(wrong.load(), 0);
 }
 
-// OMPL's termination condition, evaluated on the watcher thread, fires the token a search
-// polls; a run that ends first stops the watcher without the condition ever turning true.
-TEST(Stop, OmplTerminationConditionFiresTheToken) {
+// OMPL's termination condition, evaluated by the polling loop itself: check() sees it at once,
+// poll() within 64 calls; a condition that stays false never stops the run.
+TEST(Stop, OmplTerminationConditionStopsTheRun) {
   std::atomic<bool> done{false};
-  const ompl::base::PlannerTerminationCondition ptc([&done] { return done.load(); });
-  {
-    const sampling::PtcStopSource source(ptc);
-    Stop stop(source.token());
-    EXPECT_FALSE(stop.check());
-    const auto asked = Clock::now();
-    done = true;
-    while (!stop.check() && ms_since(asked) < 5000)
-      std::this_thread::sleep_for(std::chrono::microseconds(100));
-    EXPECT_EQ(stop.check(), Status::cancelled);
-    EXPECT_LT(ms_since(asked), 1000.0);
-  }
-  done = false;
-  { const sampling::PtcStopSource quiet(ptc); }  // ends at once: the run was over first
+  int evaluated = 0;
+  const ompl::base::PlannerTerminationCondition ptc([&] {
+    ++evaluated;
+    return done.load();
+  });
+  Stop stop = sampling::stop_on(ptc);
+  EXPECT_TRUE(stop.can_stop());
+  EXPECT_FALSE(stop.check());
+  for (int i = 0; i < 1000; ++i) ASSERT_FALSE(stop.poll());
+  EXPECT_GE(evaluated, 1000 / 64);
+  EXPECT_LE(evaluated, 1000 / 64 + 1);  // not on every poll: the loop's cheap path stays cheap
+  done = true;
+  EXPECT_EQ(stop.check(), Status::cancelled);
+  int polls = 1;
+  while (!stop.poll()) ++polls;
+  EXPECT_LE(polls, 64);
+}
+
+// The grid planner under OMPL: a condition that is already true ends the search at once
+// (cancelled, nothing expanded beyond the first poll window); a false one lets it solve.
+TEST(Stop, GridSearchEndsOnItsStopCondition) {
+  GridProblem p;
+  p.dims = 2;
+  GridSearchOptions o;
+  o.stop_when = [] { return true; };
+  const GridReport stopped = solve_grid(p, o);
+  EXPECT_EQ(stopped.status, Status::cancelled);
+  EXPECT_LE(stopped.counters.expanded, 64u);
+  o.stop_when = [] { return false; };
+  EXPECT_EQ(solve_grid(p, o).status, Status::solved);
 }
 
 TEST(Stop, TwoPlannersShareOneWorldWhileAThirdCancels) {

@@ -19,6 +19,7 @@ inline search::Options engine_options(const GridSearchOptions& o, double weight,
   search::Options e;
   e.max_states = budget;
   e.stop = Stop::after(o.time_limit_s, o.cancel);
+  if (o.stop_when) e.stop.also_when(o.stop_when);
   e.weight = weight;
   switch (o.algorithm) {
     case GridAlgorithm::astar:

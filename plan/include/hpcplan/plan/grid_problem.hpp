@@ -2,6 +2,7 @@
 // A grid planning request on the GOG field, validated as a whole: what the CLI, benchmarks and
 // the distributed layer all build before searching.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <stop_token>
 #include <string>
@@ -42,6 +43,9 @@ struct GridSearchOptions {
   std::uint64_t max_states = 0;  // 0 = derived from available memory
   double time_limit_s = 0.0;     // 0 = none; counted from the start of the search
   std::stop_token cancel;        // another thread may end the search (status cancelled)
+  // Also ends it (status cancelled) once true; evaluated on the search's thread every 64th
+  // expansion (OMPL's termination condition).
+  std::function<bool()> stop_when;
   bool keep_path = false;
 };
 

@@ -1,45 +1,19 @@
 #pragma once
-// OMPL's termination condition is a predicate to evaluate; hpcplan's loops poll a Stop (a stop
-// token). This maps one onto the other: a watcher thread evaluates the predicate every
-// millisecond and triggers the token, so a search ends within about a millisecond of the
-// condition turning true. The watcher ends with this object, at once: it waits on its stop
-// token, not in a sleep (a plain 1 ms sleep added up to 1 ms to every short solve).
+// OMPL's termination condition is a predicate to evaluate; hpcplan's loops poll a Stop. This
+// makes the one a condition of the other, evaluated by the loop itself every 64th poll. (It used
+// to be a watcher thread that triggered a stop token; starting and joining that thread cost a
+// 2D query more than its search.)
 //
-// Threads: the predicate is evaluated on the watcher thread (OMPL's conditions are made to be
-// evaluated from several threads); one object per run.
-#include <chrono>
-#include <condition_variable>
-#include <mutex>
-#include <stop_token>
-#include <thread>
-
+// Threads: the predicate is evaluated on the thread running the loop, the one OMPL called
+// solve() on; the condition must outlive the run.
 #include <ompl/base/PlannerTerminationCondition.h>
+
+#include "hpcplan/core/stop.hpp"
 
 namespace hpcplan::sampling {
 
-class PtcStopSource {
- public:
-  explicit PtcStopSource(const ompl::base::PlannerTerminationCondition& ptc)
-      : watcher_([this, &ptc](std::stop_token run_over) {
-          std::mutex m;
-          std::condition_variable_any wake;  // woken by run_over: the run's end joins at once
-          std::unique_lock lock(m);
-          while (!run_over.stop_requested()) {
-            if (ptc()) {
-              fired_.request_stop();
-              return;
-            }
-            wake.wait_for(lock, run_over, std::chrono::milliseconds(1), [] { return false; });
-          }
-        }) {}
-  PtcStopSource(const PtcStopSource&) = delete;
-  PtcStopSource& operator=(const PtcStopSource&) = delete;
-
-  std::stop_token token() const { return fired_.get_token(); }
-
- private:
-  std::stop_source fired_;  // declared before the watcher, which uses it
-  std::jthread watcher_;
-};
+inline Stop stop_on(const ompl::base::PlannerTerminationCondition& ptc, Stop stop = {}) {
+  return stop.also_when([&ptc] { return ptc(); });
+}
 
 }  // namespace hpcplan::sampling
