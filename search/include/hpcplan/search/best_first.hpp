@@ -90,7 +90,9 @@ Result<typename G::State> best_first_search(const G& graph, const typename G::St
 
     bool goal_generated = false;
     bool over_budget = false;
-    auto emit = [&](const State& t, const Cost& cost, typename G::Move m) {
+    // (Forced inline: GCC kept it a call; inlined, a 2D query is about 8% faster.)
+    auto emit = [&](const State& t, const Cost& cost, typename G::Move m)
+        __attribute__((always_inline)) {
       ++counters.generated;
       if (goal_generated || over_budget) return;
       // BFS stores the real cost too (never compared): it orders by hops through the FIFO.
