@@ -98,6 +98,7 @@ Action register_ompl_command(CLI::App& app) {
       ->capture_default_str();
   add_param(cmd, "grid_weight", o.grid_weight)->capture_default_str();
   add_param(cmd, "no_shortcut", args->no_shortcut);
+  add_param(cmd, "smoothing_budget", o.smoothing_budget)->capture_default_str();
   cmd->add_option("--log", args->log, "OMPL benchmark log (for ompl_benchmark_statistics)");
   cmd->add_option("--csv", args->csv, "One row per planner run");
   cmd->add_flag("--verbose", args->verbose, "Keep OMPL's informational messages");

@@ -11,6 +11,7 @@
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/memory.hpp"
+#include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/env/gog_world.hpp"
 #include "hpcplan/sampling/path_tightening.hpp"
 
@@ -30,6 +31,8 @@ GridAStarPlanner::GridAStarPlanner(const sampling::GogSpace& space, Connectivity
                             &GridAStarPlanner::getHeuristic);
   declareParam<bool>("smoothing", this, &GridAStarPlanner::setShortcut,
                      &GridAStarPlanner::getShortcut, "0,1");
+  declareParam<double>("smoothing_budget", this, &GridAStarPlanner::setSmoothingBudget,
+                       &GridAStarPlanner::getSmoothingBudget, "0.:0.5:100.");
   declareParam<double>("time_limit", this, &GridAStarPlanner::setTimeLimit,
                        &GridAStarPlanner::getTimeLimit, "0.:1.:3600.");
 }
@@ -101,15 +104,35 @@ ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition&
     si_->freeState(states[states.size() - 2]);
     states.erase(states.end() - 2);
   }
-  if (shortcut_ && !ptc()) {
-    og::PathSimplifier simplifier(si_, pdef_->getGoal(), pdef_->getOptimizationObjective());
-    simplifier.simplify(*path, ptc);
-    // Randomised shortcuts stop short of the taut path around obstacle corners; pulling the
-    // path tight finishes the job (subdividing at two cell widths).
-    sampling::tighten_path(si_, *path, ptc, 2.0);
-  }
+  if (shortcut_ && !ptc()) smooth(*path, ptc);
   pdef_->addSolutionPath(path, false, 0.0, getName());
   return ob::PlannerStatus::EXACT_SOLUTION;
+}
+
+// OMPL's randomised simplifier is the global step: its shortcuts between points anywhere on two
+// segments straighten a high-dimensional staircase better, per check, than any vertex-to-vertex
+// pass. It stops short of the taut path around obstacle corners, so the tightener (string
+// pulling, then rounds of sliding the bends) finishes. Both share one budget, a multiple of the
+// search's own time, so the smoothed answer costs a bounded factor of the lattice answer.
+void GridAStarPlanner::smooth(og::PathGeometric& path, const ob::PlannerTerminationCondition& ptc) {
+  const double budget_s = smoothing_budget_ * last_.counters.time_ms / 1e3;
+  const Stopwatch clock;
+  og::PathSimplifier simplifier(si_, pdef_->getGoal(), pdef_->getOptimizationObjective());
+  if (budget_s > 0)
+    simplifier.simplify(
+        path,
+        ob::plannerOrTerminationCondition(ptc, ob::timedPlannerTerminationCondition(budget_s)),
+        /*atLeastOnce=*/false);
+  else
+    simplifier.simplify(path, ptc);
+  sampling::TighteningOptions tighten;
+  tighten.max_segment = 2.0;  // cell widths: enough vertices to wrap every corner
+  tighten.pull_string = true;
+  if (budget_s > 0) {
+    tighten.time_limit_s = budget_s - clock.seconds();
+    if (tighten.time_limit_s <= 0) return;
+  }
+  sampling::tighten_path(si_, path, ptc, tighten);
 }
 
 void GridAStarPlanner::getPlannerData(ob::PlannerData& data) const {

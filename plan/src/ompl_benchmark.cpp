@@ -47,6 +47,7 @@ ob::PlannerPtr grid(const GogSpace& w, const OmplBenchOptions& o, bool smoothing
   auto p = std::make_shared<GridAStarPlanner>(w);
   p->setShortcut(smoothing);
   p->setWeight(o.grid_weight);
+  p->setSmoothingBudget(o.smoothing_budget);
   p->setTimeLimit(o.time_s);
   return p;
 }
@@ -89,8 +90,9 @@ std::vector<PlannerSpec> ompl_harness_specs() {
       {"gridastar",
        "grid search",
        {"ompl"},
-       {"grid_weight", "no_shortcut"},
-       "the GOG grid planner inside OMPL: lattice A*, then simplified and tightened"},
+       {"grid_weight", "no_shortcut", "smoothing_budget"},
+       "the GOG grid planner inside OMPL: lattice A*, then simplified and tightened within a "
+       "budget of the search's own time"},
       {"gridastar_lattice",
        "grid search",
        {"ompl"},
@@ -132,6 +134,8 @@ void validate(const OmplBenchOptions& o) {
     throw InputError("--resolution must be in (0, 1] cell widths");
   (void)parse_motion_check(o.motion);
   if (!(o.grid_weight >= 1.0)) throw InputError("--grid-weight must be >= 1");
+  if (!(o.smoothing_budget >= 0.0 && o.smoothing_budget <= 1e6))
+    throw InputError("--smoothing-budget must be in [0, 1e6]");
   if (!(o.gog.density > 0.0 && o.gog.density < 1.0))
     throw InputError("--density must be in (0, 1)");
 }

@@ -54,6 +54,9 @@ std::vector<ParamSpec> parameter_table() {
       // The OMPL harness (hpcplan ompl).
       real("grid_weight", 1, 1e9, "1", "the grid planner's weight (1 = A*)"),
       flag("no_shortcut", "the grid planner keeps its lattice path"),
+      real("smoothing_budget", 0, 1e6, "1",
+           "the grid planner's smoothing time as a multiple of its search time (0 = until it "
+           "converges)"),
   };
 }
 

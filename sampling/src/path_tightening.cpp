@@ -1,5 +1,6 @@
 #include "hpcplan/sampling/path_tightening.hpp"
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -7,6 +8,7 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/env/path_shortcut.hpp"
 #include "hpcplan/sampling/ptc_stop.hpp"
 #include "hpcplan/sampling/world_space.hpp"
@@ -50,18 +52,22 @@ class SpaceView {
 
 template <int D>
 TighteningStats tighten_as(const ob::SpaceInformationPtr& si, og::PathGeometric& path,
-                           const ob::PlannerTerminationCondition& ptc, double max_segment,
-                           int max_rounds) {
+                           const ob::PlannerTerminationCondition& ptc,
+                           const TighteningOptions& options) {
   const SpaceView<D> view(si);
   std::vector<env::Vec<D>> points;
   for (const ob::State* s : path.getStates()) points.push_back(point_of<D>(s));
   TighteningStats stats;
   stats.length_before = env::polyline_length<D>(points);
+  Stopwatch clock;
+  if (options.pull_string) points = env::shortcut_path(view, points);
   env::TightenOptions o;
-  o.max_segment = max_segment;
-  o.max_rounds = max_rounds;
+  o.max_segment = options.max_segment;
+  o.max_rounds = options.max_rounds;
   o.tolerance = 1e-5;
-  o.time_limit_s = 1e9;  // the termination condition is the budget
+  // The termination condition, and the caller's own budget if it gave one.
+  o.time_limit_s =
+      options.time_limit_s > 0 ? std::max(0.0, options.time_limit_s - clock.seconds()) : 1e9;
   o.stop = stop_on(ptc);
   stats.rounds = env::tighten_in_place(view, points, o);
   stats.length_after = env::polyline_length<D>(points);
@@ -79,8 +85,8 @@ TighteningStats tighten_as(const ob::SpaceInformationPtr& si, og::PathGeometric&
 }  // namespace
 
 TighteningStats tighten_path(const ob::SpaceInformationPtr& si, og::PathGeometric& path,
-                             const ob::PlannerTerminationCondition& ptc, double max_segment,
-                             int max_rounds) {
+                             const ob::PlannerTerminationCondition& ptc,
+                             const TighteningOptions& options) {
   if (dynamic_cast<const ob::RealVectorStateSpace*>(si->getStateSpace().get()) == nullptr)
     throw RunError("tighten_path needs a real vector state space");
   const int dims = static_cast<int>(si->getStateDimension());
@@ -88,9 +94,7 @@ TighteningStats tighten_path(const ob::SpaceInformationPtr& si, og::PathGeometri
   bool done = false;
   // The tightener works on fixed-size points: pick the instance for this dimension.
   [&]<int... I>(std::integer_sequence<int, I...>) {
-    ((dims == I + 1
-          ? (stats = tighten_as<I + 1>(si, path, ptc, max_segment, max_rounds), done = true)
-          : false) ||
+    ((dims == I + 1 ? (stats = tighten_as<I + 1>(si, path, ptc, options), done = true) : false) ||
      ...);
   }
   (std::make_integer_sequence<int, kMaxDims>{});

@@ -4,18 +4,21 @@
 //  - the start and goal states are mapped to their lattice cells, solve_grid() searches the
 //    seed-002 lattice, and the lattice path becomes continuous cell centres with the exact
 //    start and goal states at its ends (a segment inside one cell is always valid);
-//  - with `shortcut` on, OMPL's PathSimplifier then shortens the path in continuous space with
-//    the space information's own motion validator, which takes grid paths below the lattice's
-//    quality limit (sqrt(d/2) in open space);
+//  - with `shortcut` on, the path is then shortened in continuous space with the space
+//    information's own motion validator (OMPL's PathSimplifier, then hpcplan's tightener),
+//    which takes grid paths below the lattice's quality limit (sqrt(d/2) in open space), within
+//    a budget of `smoothing_budget` times the search's own time;
 //  - the lattice's collision checks are added to the world's counter, so checks are counted
 //    by one object for every planner.
 // Parameters (declared, so Benchmark logs them): weight (1 = A*), heuristic (lattice |
-// euclidean), smoothing (0/1: simplify + tighten), time_limit (s, 0 = none; the search also stops
-// when OMPL's termination condition fires during shortcutting).
+// euclidean), smoothing (0/1: simplify + tighten), smoothing_budget (the smoothing's time as a
+// multiple of the search's; 0 = until it converges), time_limit (s, 0 = none). OMPL's
+// termination condition ends the search and the smoothing early.
 #include <cstdint>
 #include <string>
 
 #include <ompl/base/Planner.h>
+#include <ompl/geometric/PathGeometric.h>
 
 #include "hpcplan/plan/grid_planner.hpp"
 #include "hpcplan/sampling/gog_space.hpp"
@@ -36,6 +39,8 @@ class GridAStarPlanner : public ompl::base::Planner {
   std::string getHeuristic() const { return std::string(to_string(heuristic_)); }
   void setShortcut(bool s) { shortcut_ = s; }
   bool getShortcut() const { return shortcut_; }
+  void setSmoothingBudget(double factor) { smoothing_budget_ = factor; }
+  double getSmoothingBudget() const { return smoothing_budget_; }
   void setTimeLimit(double s) { time_limit_s_ = s; }
   double getTimeLimit() const { return time_limit_s_; }
 
@@ -44,11 +49,15 @@ class GridAStarPlanner : public ompl::base::Planner {
   const GridReport& lastReport() const { return last_; }
 
  private:
+  void smooth(ompl::geometric::PathGeometric& path,
+              const ompl::base::PlannerTerminationCondition& ptc);
+
   sampling::GogSpace space_;
   Connectivity connectivity_;
   double weight_ = 1.0;
   HeuristicKind heuristic_ = HeuristicKind::lattice;
   bool shortcut_ = true;
+  double smoothing_budget_ = 1.0;
   double time_limit_s_ = 0.0;
   std::uint64_t max_states_ = 0;  // the search's state budget, set at the first solve
   GridReport last_;

@@ -36,6 +36,7 @@ struct OmplBenchOptions {
   std::string motion = "exact";   // exact | discrete (sampling/gog_space.hpp)
   bool shortcut = true;           // grid planner: shorten its path in continuous space
   double grid_weight = 1.0;       // grid planner: 1 = A*
+  double smoothing_budget = 1.0;  // grid planner: smoothing time / search time (0 = converge)
   double memory_mb = 8192.0;      // Benchmark's per-run memory limit
   std::string experiment;         // name in the log; default "gog-<d>d"
 };

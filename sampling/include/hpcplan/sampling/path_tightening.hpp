@@ -18,11 +18,20 @@ struct TighteningStats {
   double length_before = 0.0, length_after = 0.0;
 };
 
-// `max_segment`: subdivide segments longer than this (state-space units) each round; stops at
-// `ptc`, after `max_rounds`, or when a round gains less than 1e-5 of the length.
+struct TighteningOptions {
+  double max_segment = 2.0;  // subdivide longer segments (state-space units) each round
+  int max_rounds = 200;
+  double time_limit_s = 0.0;  // the tightener's own budget; 0 = none (ptc alone)
+  // First pull the string: from each kept vertex jump to the farthest later vertex in view
+  // (env::shortcut_path). On a lattice path that is most of the gain for a few checks.
+  bool pull_string = false;
+};
+
+// Stops at `ptc`, at the time limit, after `max_rounds`, or when a round gains less than 1e-5
+// of the length.
 TighteningStats tighten_path(const ompl::base::SpaceInformationPtr& si,
                              ompl::geometric::PathGeometric& path,
-                             const ompl::base::PlannerTerminationCondition& ptc, double max_segment,
-                             int max_rounds = 200);
+                             const ompl::base::PlannerTerminationCondition& ptc,
+                             const TighteningOptions& options = {});
 
 }  // namespace hpcplan::sampling
