@@ -61,7 +61,7 @@ void run_distributed(const GogField& field, const GridProblem& problem, const Gr
   // The serial engine's rule: small one-word lattices keep their states in the dense store
   // (each rank faults in only the pages its own states fall on).
   const bool dense = W == 1 && dense_visited_fits(problem.dims, problem.extent);
-  if (dense) eo.dense_keys = std::uint64_t{1} << (graph.layout().bits() * problem.dims);
+  if (dense) eo.dense_keys = graph.layout().dense_index_bound();
   report.visited_map = dense ? search::StampedDensePolicy::name : search::DefaultVisitedMap::name;
 
   DistOptions d;

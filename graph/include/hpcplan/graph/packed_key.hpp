@@ -65,6 +65,8 @@ class KeyLayout {
   int word_of(int axis) const { return word_[axis]; }
   int shift_of(int axis) const { return shift_[axis]; }
   std::uint64_t mask() const { return bits_ == 64 ? ~0ULL : ((1ULL << bits_) - 1); }
+  // How many dense indices (dense_index) a one-word layout spans: 2^(bits x dims).
+  std::uint64_t dense_index_bound() const { return std::uint64_t{1} << (bits_ * dims_); }
 
   template <int W>
   PackedKey<W> pack(std::span<const int> coords) const {

@@ -56,7 +56,7 @@ void run_search(const GogField& field, const GridProblem& problem, const GridSea
   const auto goal = graph.pack(report.goal);
   auto eo = engine_options(o, report.weight, report.max_states);
   if constexpr (std::is_same_v<MapPolicy, search::StampedDensePolicy>)
-    eo.dense_keys = std::uint64_t{1} << (graph.layout().bits() * problem.dims);
+    eo.dense_keys = graph.layout().dense_index_bound();
   RunProgress progress("hpcplan grid " + report.algorithm, report.max_states);
   eo.progress = [&progress](std::uint64_t expanded, std::uint64_t stored) {
     progress.update(expanded, stored);

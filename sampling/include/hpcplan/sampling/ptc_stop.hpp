@@ -12,8 +12,8 @@
 
 namespace hpcplan::sampling {
 
-inline Stop stop_on(const ompl::base::PlannerTerminationCondition& ptc, Stop stop = {}) {
-  return stop.also_when([&ptc] { return ptc(); });
+inline Stop stop_on(const ompl::base::PlannerTerminationCondition& ptc) {
+  return Stop().also_when([&ptc] { return ptc(); });
 }
 
 }  // namespace hpcplan::sampling

@@ -52,18 +52,20 @@ class StampedDenseMap {
   void reserve(std::size_t) {}
 
   std::pair<Slot*, bool> try_emplace(const K& k, const V& v) {
-    const std::uint64_t i = dense_index(k);
+    return try_emplace_at(dense_index(k), v);
+  }
+  Slot* find(const K& k) { return find_at(dense_index(k)); }
+  const Slot* find(const K& k) const { return const_cast<StampedDenseMap*>(this)->find(k); }
+
+  // The same by index (i below the bound set): for maps whose keys are their own index.
+  std::pair<Slot*, bool> try_emplace_at(std::uint64_t i, const V& v) {
     if (stamps_[i] == generation_) return {&slots_[i], false};
     stamps_[i] = generation_;
     ++count_;
     std::construct_at(&slots_[i], Slot{v});
     return {&slots_[i], true};
   }
-  Slot* find(const K& k) {
-    const std::uint64_t i = dense_index(k);
-    return stamps_[i] == generation_ ? &slots_[i] : nullptr;
-  }
-  const Slot* find(const K& k) const { return const_cast<StampedDenseMap*>(this)->find(k); }
+  Slot* find_at(std::uint64_t i) { return stamps_[i] == generation_ ? &slots_[i] : nullptr; }
   Slot* end() const { return nullptr; }
   std::size_t size() const { return count_; }
 
