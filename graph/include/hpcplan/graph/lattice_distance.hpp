@@ -23,7 +23,8 @@
 
 namespace hpcplan {
 
-inline LatticeCost seed_rule_free_distance(std::span<const int> deltas) {
+// (Forced inline: a heuristic evaluated on every push.)
+[[gnu::always_inline]] inline LatticeCost seed_rule_free_distance(std::span<const int> deltas) {
   std::int32_t sum = 0, max = 0;
   for (int d : deltas) {
     sum += d;

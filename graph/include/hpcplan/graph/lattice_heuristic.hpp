@@ -14,10 +14,13 @@ namespace hpcplan {
 template <int W, auto Distance>
 class LatticeGoalDistance {
  public:
+  // Every distance here is an exact free-space distance (lattice_distance.hpp): consistent.
+  static constexpr bool kConsistent = true;
   LatticeGoalDistance(const KeyLayout& layout, std::span<const int> goal) : layout_(layout) {
     std::copy(goal.begin(), goal.end(), goal_.begin());
   }
-  auto operator()(const PackedKey<W>& s) const {
+  // (Forced inline: evaluated on every push; GCC kept it a call, 7-13% of a 2D query.)
+  [[gnu::always_inline]] auto operator()(const PackedKey<W>& s) const {
     int c[kMaxDims];
     layout_.unpack(s, c);
     const int d = layout_.dims();

@@ -1,7 +1,8 @@
 #pragma once
 // The serial best-first search engine for every graph (lattice, dense grid). Algorithms are
 // configurations of it:
-//   A*          heap on f = g + h, ties toward larger g
+//   A*          heap on f = g + h, ties toward larger g (a radix heap when h is consistent and
+//               exact, or h = 0: the priorities popped never fall)
 //   weighted A* heap on f = g + w*h, closed states are not reopened (keeps the w bound)
 //   Dijkstra    A* with h = 0
 //   BFS         FIFO frontier over hop counts, goal tested on generation (fewest hops)
@@ -67,7 +68,7 @@ Result<typename G::State> best_first_search(const G& graph, const typename G::St
   Counters& counters = result.counters;
   const std::uint64_t checks_before = graph.collision_checks();
   Stopwatch clock;
-  Store store(h, options);
+  Store store(h, options, kMonotonePriorities<Heuristic, G>);
   const bool is_fifo = options.frontier == Frontier::fifo;
   Stop stop = options.stop;
 

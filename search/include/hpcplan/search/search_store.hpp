@@ -1,6 +1,7 @@
 #pragma once
 // The state store every best-first search shares: the visited map (g, parent move, closed
-// flag per state) and the open list (a binary heap on f, or a FIFO for BFS). The serial engine
+// flag per state) and the open list (a binary heap on f; a radix heap when the caller promises
+// monotone priorities, see kMonotonePriorities; a FIFO for BFS). The serial engine
 // (best_first.hpp) and the distributed engines (mpi/) both drive this one store, so the rules
 // for inserting, improving, reopening and popping states are written once.
 //
@@ -22,6 +23,7 @@
 #include "hpcplan/core/splitmix64.hpp"
 #include "hpcplan/core/stop.hpp"
 #include "hpcplan/search/cost_value.hpp"
+#include "hpcplan/search/radix_open_list.hpp"
 #include "hpcplan/search/visited_map.hpp"
 
 namespace hpcplan::search {
@@ -59,11 +61,26 @@ struct Options {
 };
 
 struct ZeroHeuristic {
+  static constexpr bool kConsistent = true;
   template <class State>
   double operator()(const State&) const {
     return 0.0;
   }
 };
+
+// Whether a best-first search at weight 1 pops priorities that never fall: Dijkstra (g only
+// grows along a path, in any arithmetic), or A* whose heuristic declares itself consistent and
+// returns the graph's exact cost type, so f = g + h is formed exactly and cannot dip by a
+// rounding. Such a search may use the monotone open list.
+template <class Heuristic, class G>
+inline constexpr bool kMonotonePriorities =
+    std::is_same_v<Heuristic, ZeroHeuristic> ||
+    (
+        requires { requires Heuristic::kConsistent; } &&
+        requires(const Heuristic& h, const typename G::State& s, const typename G::Cost& c) {
+          { h(s) } -> std::same_as<typename G::Cost>;
+          c.value();
+        });
 
 // Mutable access to a map entry: tsl::robin_map exposes it as value(), the others as second.
 template <class Iterator>
@@ -87,7 +104,9 @@ class SearchStore {
   };
   enum class Offered { pushed, ignored, over_budget };
 
-  SearchStore(const Heuristic& h, const Options& options)
+  // monotone: the caller promises priorities that never fall below the last popped one (see
+  // kMonotonePriorities), and the open list is a radix heap instead of a binary heap.
+  SearchStore(const Heuristic& h, const Options& options, bool monotone = false)
       : h_(h),
         fifo_(options.frontier == Frontier::fifo),
         // A random frontier closes states in no useful order; reopening one would leave its
@@ -96,13 +115,17 @@ class SearchStore {
         weight_(options.weight),
         random_(options.frontier == Frontier::random),
         max_states_(options.max_states),
+        monotone_(monotone && options.frontier == Frontier::best_first && options.weight == 1.0),
         rng_(options.seed) {
     // Small searches (2D, replanning, benchmark loops) would otherwise spend a third of
     // their time growing the map and heap through a dozen rehashes and re-faulted pages.
     if constexpr (requires { visited_.set_dense_keys(options.dense_keys); })
       visited_.set_dense_keys(options.dense_keys);
     visited_.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(max_states_, kInitial)));
-    if (!fifo_) heap_.reserve(kInitial / 4);
+    if (monotone_)
+      radix_.reserve(kInitial / 16);
+    else if (!fifo_)
+      heap_.reserve(kInitial / 4);
   }
 
   // A state reached with cost g through move m. New states are stored and opened; known ones
@@ -147,13 +170,8 @@ class SearchStore {
       f = cost_value(g);
       return true;
     }
-    while (!heap_.empty()) {
-      if (random_)
-        std::swap(heap_[rng_.next_below(heap_.size())], heap_.back());
-      else
-        std::pop_heap(heap_.begin(), heap_.end(), lower_priority);
-      const Entry e = heap_.back();
-      heap_.pop_back();
+    Entry e;
+    while (take(e)) {
       Node& node = mapped(visited_.find(e.state));
       if (node.closed || e.g > cost_value(node.g)) continue;  // stale duplicate
       node.closed = true;
@@ -179,12 +197,17 @@ class SearchStore {
   // Lowest priority on the open list (may belong to a stale entry), +inf when empty.
   double best_priority() const {
     if (fifo_) return fifo_queue_.empty() ? kInfinity : cost_value(fifo_queue_.front().second);
+    double f;
+    if (monotone_) return radix_.least(f) ? f : kInfinity;
     return heap_.empty() ? kInfinity : heap_.front().f;
   }
-  bool open_empty() const { return fifo_ ? fifo_queue_.empty() : heap_.empty(); }
-  std::size_t open_size() const { return fifo_ ? fifo_queue_.size() : heap_.size(); }
+  bool open_empty() const { return open_size() == 0; }
+  std::size_t open_size() const {
+    return fifo_ ? fifo_queue_.size() : monotone_ ? radix_.size() : heap_.size();
+  }
   void clear_open() {
     heap_.clear();
+    radix_.clear();
     fifo_queue_.clear();
   }
   std::size_t stored() const { return visited_.size(); }
@@ -226,11 +249,39 @@ class SearchStore {
       fifo_queue_.emplace_back(s, g);
       size = fifo_queue_.size();
     } else {
-      heap_.push_back(Entry{priority(g, s), cost_value(g), s});
-      if (!random_) std::push_heap(heap_.begin(), heap_.end(), lower_priority);
-      size = heap_.size();
+      const Entry e{priority(g, s), cost_value(g), s};
+      if (monotone_ && radix_.push(e)) {
+        size = radix_.size();
+      } else {
+        if (monotone_) leave_monotone_list();
+        heap_.push_back(e);
+        if (!random_) std::push_heap(heap_.begin(), heap_.end(), lower_priority);
+        size = heap_.size();
+      }
     }
     peak_open_ = std::max<std::uint64_t>(peak_open_, size);
+  }
+
+  // The next open entry, stale or not, in priority order (random order for Frontier::random).
+  bool take(Entry& e) {
+    if (monotone_) return radix_.pop(e);
+    if (heap_.empty()) return false;
+    if (random_)
+      std::swap(heap_[rng_.next_below(heap_.size())], heap_.back());
+    else
+      std::pop_heap(heap_.begin(), heap_.end(), lower_priority);
+    e = heap_.back();
+    heap_.pop_back();
+    return true;
+  }
+
+  // A priority fell after all (a heuristic that is not consistent after all): the order is
+  // still served correctly by the binary heap, so the open entries move there for the rest of
+  // the run.
+  [[gnu::noinline]] void leave_monotone_list() {
+    monotone_ = false;
+    radix_.drain([this](const Entry& e) { heap_.push_back(e); });
+    std::make_heap(heap_.begin(), heap_.end(), lower_priority);
   }
 
   static constexpr std::uint64_t kInitial = 1 << 14;  // states reserved up front
@@ -241,9 +292,11 @@ class SearchStore {
   double weight_;
   bool random_;
   std::uint64_t max_states_;
+  bool monotone_;
   SplitMix64 rng_;
   typename MapPolicy::template type<State, Node, typename G::Hash> visited_;
   std::vector<Entry, HugePageAllocator<Entry>> heap_;
+  RadixOpenList<Entry> radix_;
   std::deque<std::pair<State, Cost>> fifo_queue_;  // BFS: each state with its g
   std::uint64_t reopened_ = 0;
   std::uint64_t peak_open_ = 0;

@@ -1,0 +1,156 @@
+// The monotone open list against a binary heap, its refusal of a falling priority, and the
+// search's move to a binary heap when a heuristic that claims consistency is not.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <functional>
+#include <queue>
+#include <vector>
+
+#include "hpcplan/core/splitmix64.hpp"
+#include "hpcplan/env/gog.hpp"
+#include "hpcplan/graph/lattice_graph.hpp"
+#include "hpcplan/graph/lattice_heuristic.hpp"
+#include "hpcplan/search/best_first.hpp"
+#include "hpcplan/search/radix_open_list.hpp"
+#include "hpcplan/search/stamped_dense_map.hpp"
+#include "lattice_oracle.hpp"
+
+namespace {
+
+using namespace hpcplan;
+
+struct Item {
+  double f;
+  double g;
+  int id;
+};
+
+// A Dijkstra-like workload: every push is at least the last popped priority, with many equal
+// priorities (integer and half-integer steps) and some arbitrary ones.
+TEST(RadixOpenList, PopsInTheOrderOfABinaryHeap) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    SplitMix64 rng(seed);
+    search::RadixOpenList<Item> radix;
+    std::priority_queue<double, std::vector<double>, std::greater<>> heap;
+    double last = 0.0;
+    int pushed = 0, popped = 0;
+    auto push = [&] {
+      const double step = rng.next_below(4) == 0 ? 1e3 * rng.next_unit()
+                                                 : 0.5 * static_cast<double>(rng.next_below(6));
+      const Item it{last + step, rng.next_unit(), pushed++};
+      ASSERT_TRUE(radix.push(it));
+      heap.push(it.f);
+    };
+    for (int i = 0; i < 5; ++i) push();
+    for (int round = 0; round < 2000; ++round) {
+      if (rng.next_below(3) != 0) {
+        push();
+        continue;
+      }
+      Item it;
+      ASSERT_EQ(radix.pop(it), !heap.empty());
+      if (heap.empty()) continue;
+      EXPECT_EQ(it.f, heap.top()) << "seed " << seed << " pop " << popped;
+      heap.pop();
+      last = it.f;
+      ++popped;
+      double least;
+      if (radix.least(least)) {
+        EXPECT_EQ(least, heap.top());
+      }
+      EXPECT_EQ(radix.size(), heap.size());
+    }
+    Item it;
+    while (radix.pop(it)) {
+      EXPECT_EQ(it.f, heap.top());
+      heap.pop();
+    }
+    EXPECT_TRUE(heap.empty());
+  }
+}
+
+// Equal priorities leave deepest first (largest g), as the binary heap's tie-break does.
+TEST(RadixOpenList, EqualPrioritiesLeaveDeepestFirst) {
+  search::RadixOpenList<Item> radix;
+  for (int i = 0; i < 6; ++i)
+    ASSERT_TRUE(radix.push(Item{7.0, static_cast<double>((i * 5) % 6), i}));
+  ASSERT_TRUE(radix.push(Item{3.0, 0.0, 99}));
+  Item it;
+  ASSERT_TRUE(radix.pop(it));
+  EXPECT_EQ(it.id, 99);
+  for (double g = 5; g >= 0; --g) {
+    ASSERT_TRUE(radix.pop(it));
+    EXPECT_EQ(it.f, 7.0);
+    EXPECT_EQ(it.g, g);
+  }
+  EXPECT_FALSE(radix.pop(it));
+}
+
+TEST(RadixOpenList, RefusesAFallingOrNegativePriority) {
+  search::RadixOpenList<Item> radix;
+  EXPECT_FALSE(radix.push(Item{-1.0, 0.0, 0}));
+  ASSERT_TRUE(radix.push(Item{5.0, 0.0, 1}));
+  ASSERT_TRUE(radix.push(Item{9.0, 0.0, 2}));
+  Item it;
+  ASSERT_TRUE(radix.pop(it));
+  EXPECT_FALSE(radix.push(Item{4.0, 0.0, 3}));
+  EXPECT_TRUE(radix.push(Item{5.0, 0.0, 4}));
+  EXPECT_EQ(radix.size(), 2u);
+  std::vector<int> drained;
+  radix.drain([&](const Item& i) { drained.push_back(i.id); });
+  std::sort(drained.begin(), drained.end());
+  EXPECT_EQ(drained, (std::vector<int>{2, 4}));
+  EXPECT_TRUE(radix.empty());
+}
+
+// Admissible but not consistent, while claiming to be: the exact free distance at states with
+// an even first coordinate, nothing elsewhere, so f falls by up to the whole distance along a
+// move. The store must notice the falling priority, move to the binary heap, reopen states,
+// and still return the optimum.
+template <int W>
+class ClaimsConsistency {
+ public:
+  static constexpr bool kConsistent = true;
+  ClaimsConsistency(const KeyLayout& layout, std::span<const int> goal)
+      : exact_(layout, goal), layout_(layout) {}
+  LatticeCost operator()(const PackedKey<W>& s) const {
+    int c[kMaxDims];
+    layout_.unpack(s, c);
+    return c[0] % 2 == 0 ? exact_(s) : LatticeCost{};
+  }
+
+ private:
+  SeedRuleHeuristic<W> exact_;
+  const KeyLayout& layout_;
+};
+
+TEST(RadixOpenList, SearchLeavesItForAHeapWhenTheHeuristicIsNotConsistent) {
+  int solved = 0;
+  std::uint64_t reopened = 0;
+  for (std::uint64_t seed = 1; seed <= 24; ++seed) {
+    GogParams params;
+    params.seed = seed;
+    params.density = 0.25;
+    const GogField field(2, 60, params);
+    const LatticeGraph<1> graph(field, Connectivity::seed_pairs);
+    const std::vector<int> start{0, 0}, goal{59, 59};
+    if (!field.is_free(start) || !field.is_free(goal)) continue;
+    const oracle::Lattice oracle(field, false);
+    const oracle::Answer best = oracle.dijkstra(start, goal);
+    const ClaimsConsistency<1> h(graph.layout(), goal);
+    search::Options options;
+    options.dense_keys = graph.layout().dense_index_bound();
+    const auto r = search::best_first_search<search::StampedDensePolicy>(
+        graph, graph.pack(start), graph.pack(goal), h, options);
+    ASSERT_EQ(r.status == search::Status::solved, best.reachable) << "seed " << seed;
+    if (!best.reachable) continue;
+    ++solved;
+    reopened += r.counters.reopened;
+    EXPECT_NEAR(r.cost, best.cost, 1e-9 * (1 + best.cost)) << "seed " << seed;
+  }
+  EXPECT_GE(solved, 12);
+  EXPECT_GT(reopened, 0u) << "the heuristic never broke consistency: the test tests nothing";
+}
+
+}  // namespace
