@@ -3,7 +3,14 @@
 // visited map is large and the figure is not an in-cache best case.
 #include <benchmark/benchmark.h>
 
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+#include <ompl/geometric/SimpleSetup.h>
+#include <ompl/util/Console.h>
+
+#include "hpcplan/plan/grid_astar_planner.hpp"
 #include "hpcplan/plan/grid_planner_impl.hpp"
+#include "hpcplan/plan/grid_problem.hpp"
+#include "hpcplan/sampling/gog_space.hpp"
 #include "visited_maps.hpp"
 
 namespace {
@@ -93,6 +100,48 @@ BENCHMARK(BM_Query<search::AbslFlatMap>)
 BENCHMARK(BM_Query<search::StampedDensePolicy>)
     ->Name("Query/dense")
     ->DenseRange(2, 3, 1)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+
+// The same 2D query as an OMPL planner (`hpcplan ompl`'s gridastar_lattice: no smoothing), to
+// split its time into the search and what is around it. range(1) = 0: Planner::solve with a
+// plain termination condition (the adapter's own cost: problem set-up, the path as OMPL
+// states); 1: Planner::solve(fn, 0.1), the call ompl::tools::Benchmark makes, which starts and
+// joins a thread that polls the condition, in every run and for every planner.
+void BM_OmplQuery(benchmark::State& state) {
+  namespace ob = ompl::base;
+  namespace og = ompl::geometric;
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  const GridProblem p = default_problem(static_cast<int>(state.range(0)));
+  auto field = std::make_shared<const GogField>(p.dims, p.extent, p.gog);
+  const sampling::GogSpace space = sampling::make_gog_space(field, 1.0);
+  ob::ScopedState<> start(space.space), goal(space.space);
+  sampling::cell_centre(adjust_to_free(*field, std::vector<int>(p.dims, 0), +1, "start"),
+                        start.get());
+  sampling::cell_centre(adjust_to_free(*field, std::vector<int>(p.dims, p.extent - 1), -1, "goal"),
+                        goal.get());
+  og::SimpleSetup setup(space.si);
+  setup.setStartAndGoalStates(start, goal, 1e-6);
+  setup.setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(space.si));
+  auto planner = std::make_shared<plan::GridAStarPlanner>(space);
+  planner->setShortcut(false);
+  setup.setPlanner(planner);
+  setup.setup();
+  const bool harness_call = state.range(1) != 0;
+  ob::Planner& base = *planner;  // the overload with a check interval lives on the base
+  for (auto _ : state) {
+    planner->clear();
+    setup.getProblemDefinition()->clearSolutionPaths();
+    const ob::PlannerStatus status = harness_call
+                                         ? base.solve([] { return false; }, 0.1)
+                                         : planner->solve(ob::plannerNonTerminatingCondition());
+    if (status != ob::PlannerStatus::EXACT_SOLUTION) state.SkipWithError("not solved");
+  }
+  state.SetLabel(harness_call ? "solve(fn, 0.1) as ompl::tools::Benchmark" : "solve(ptc)");
+}
+BENCHMARK(BM_OmplQuery)
+    ->Name("OmplQuery")
+    ->ArgsProduct({{2}, {0, 1}})
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 

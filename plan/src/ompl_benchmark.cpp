@@ -209,7 +209,7 @@ OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o) {
     const auto pdef = planner->getProblemDefinition();
     row.solved = pdef->hasExactSolution();
     row.improvements = improvements;
-    row.anytime = !improvements.empty();
+    row.anytime = planner->getSpecs().optimizingPaths && !improvements.empty();
     if (row.solved) {
       const auto* path = pdef->getSolutionPath()->as<og::PathGeometric>();
       row.length_final = path->length();

@@ -5,10 +5,13 @@
 //
 // Per run the harness records, besides Benchmark's own properties (which go to the OMPL log):
 //  - every solution improvement (time, length) through the ProblemDefinition's intermediate
-//    solution callback; anytime planners (BIT*, RRT*, ...) report each one;
-//  - first solution: the first improvement, or the planner's end for planners that report
-//    none (FMT*, the grid planner, RRT-Connect);
-//  - "best" solution (seed 002 §V-D), for planners that reported improvements: the first
+//    solution callback; anytime planners (BIT*, RRT*, ...) report each one, and the grid
+//    planner reports its one answer the same way;
+//  - first solution: the first report, or the planner's end for planners that report none
+//    (FMT*, RRT-Connect). The end is Benchmark's "time REAL", which includes the join of
+//    OMPL's termination-polling thread: it sleeps in 1 ms slices, so a solve shorter than
+//    about a millisecond reads as the next slice;
+//  - "best" solution (seed 002 §V-D), for optimizing planners that reported improvements: the first
 //    moment the quality reaches the midpoint
 //    between the first quality and the reference quality, the best final quality any run of
 //    any planner reached in this invocation;
@@ -53,7 +56,7 @@ struct OmplRunRow {
   double length_final = -1.0, quality_final = -1.0;
   std::uint64_t collision_checks = 0;
   bool path_valid = true;
-  bool anytime = false;  // reported improvements while running; only these have a "best"
+  bool anytime = false;  // optimizing and reported improvements; only these have a "best"
   std::vector<std::pair<double, double>> improvements;  // (s, length)
 };
 
