@@ -87,6 +87,19 @@ TEST(RadixOpenList, EqualPrioritiesLeaveDeepestFirst) {
   EXPECT_FALSE(radix.pop(it));
 }
 
+// A list lent again by the pool starts over: the last popped priority of its previous search
+// must not make it refuse the next search's first pushes.
+TEST(RadixOpenList, AClearedListStartsOver) {
+  search::RadixOpenList<Item> radix;
+  ASSERT_TRUE(radix.push(Item{50.0, 0.0, 0}));
+  Item it;
+  ASSERT_TRUE(radix.pop(it));
+  radix.clear();
+  EXPECT_TRUE(radix.push(Item{3.0, 0.0, 1}));
+  ASSERT_TRUE(radix.pop(it));
+  EXPECT_EQ(it.id, 1);
+}
+
 TEST(RadixOpenList, RefusesAFallingOrNegativePriority) {
   search::RadixOpenList<Item> radix;
   EXPECT_FALSE(radix.push(Item{-1.0, 0.0, 0}));

@@ -22,6 +22,8 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 namespace hpcplan::search {
@@ -82,6 +84,7 @@ class EqualPriorityQueue {
     below_.reserve(n);
     top_.reserve(64);
   }
+  std::size_t capacity() const { return top_.capacity() + below_.capacity(); }
 
  private:
   // The entries waiting below keep g ascending, the oldest of equal g at the back.
@@ -141,6 +144,7 @@ class RadixOpenList {
     for (auto& b : buckets_) b.clear();
     equal_.clear();
     occupied_ = 0;
+    last_ = 0;  // a cleared list starts over (the pool lends it to the next search)
     size_ = 0;
   }
   // Hands every stored entry to `sink` and empties the list (the switch to a heap).
@@ -152,6 +156,11 @@ class RadixOpenList {
     clear();
   }
   void reserve(std::size_t n) { equal_.reserve(n); }
+  std::size_t capacity_bytes() const {
+    std::size_t n = refilled_.capacity() + equal_.capacity();
+    for (const auto& b : buckets_) n += b.capacity();
+    return n * sizeof(Entry);
+  }
 
  private:
   static std::uint64_t key(const Entry& e) { return std::bit_cast<std::uint64_t>(e.f); }
@@ -186,6 +195,60 @@ class RadixOpenList {
   std::uint64_t occupied_ = 0;   // bit b: buckets_[b] non-empty
   std::uint64_t last_ = 0;
   std::size_t size_ = 0;
+};
+
+// Lends lists to searches and takes them back emptied, with their vectors' capacity. A search
+// that allocated its own handed the pages back to the kernel at its end (glibc trims the top
+// of the heap) and faulted them in again in the next run, at about 20 us a page on the VMs
+// measured: a warm 8D OMPL query took 8 ms instead of 2.9. A list that grew past kKeepBytes
+// is freed rather than kept.
+//
+// Threads: the pool is guarded by a mutex; a lent list belongs to one search.
+template <class Entry>
+class LentOpenList {
+ public:
+  LentOpenList() = default;
+  LentOpenList(const LentOpenList&) = delete;
+  LentOpenList& operator=(const LentOpenList&) = delete;
+  ~LentOpenList() { give_back(); }
+
+  void borrow() {
+    give_back();
+    Pool& p = pool();
+    const std::lock_guard<std::mutex> lock(p.mutex);
+    if (p.idle.empty()) {
+      list_ = std::make_unique<RadixOpenList<Entry>>();
+    } else {
+      list_ = std::move(p.idle.back());
+      p.idle.pop_back();
+    }
+  }
+  explicit operator bool() const { return list_ != nullptr; }
+  RadixOpenList<Entry>* operator->() const { return list_.get(); }
+
+  static constexpr std::size_t kKeepBytes = std::size_t{64} << 20;
+
+ private:
+  struct Pool {
+    std::mutex mutex;
+    std::vector<std::unique_ptr<RadixOpenList<Entry>>> idle;
+  };
+  static Pool& pool() {
+    static Pool p;
+    return p;
+  }
+  void give_back() {
+    if (!list_) return;
+    list_->clear();
+    if (list_->capacity_bytes() <= kKeepBytes) {
+      Pool& p = pool();
+      const std::lock_guard<std::mutex> lock(p.mutex);
+      p.idle.push_back(std::move(list_));
+    }
+    list_.reset();
+  }
+
+  std::unique_ptr<RadixOpenList<Entry>> list_;
 };
 
 }  // namespace hpcplan::search

@@ -123,7 +123,7 @@ class SearchStore {
       visited_.set_dense_keys(options.dense_keys);
     visited_.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(max_states_, kInitial)));
     if (monotone_)
-      radix_.reserve(kInitial / 16);
+      radix_.borrow();
     else if (!fifo_)
       heap_.reserve(kInitial / 4);
   }
@@ -198,16 +198,16 @@ class SearchStore {
   double best_priority() const {
     if (fifo_) return fifo_queue_.empty() ? kInfinity : cost_value(fifo_queue_.front().second);
     double f;
-    if (monotone_) return radix_.least(f) ? f : kInfinity;
+    if (monotone_) return radix_->least(f) ? f : kInfinity;
     return heap_.empty() ? kInfinity : heap_.front().f;
   }
   bool open_empty() const { return open_size() == 0; }
   std::size_t open_size() const {
-    return fifo_ ? fifo_queue_.size() : monotone_ ? radix_.size() : heap_.size();
+    return fifo_ ? fifo_queue_.size() : monotone_ ? radix_->size() : heap_.size();
   }
   void clear_open() {
     heap_.clear();
-    radix_.clear();
+    if (radix_) radix_->clear();
     fifo_queue_.clear();
   }
   std::size_t stored() const { return visited_.size(); }
@@ -250,8 +250,8 @@ class SearchStore {
       size = fifo_queue_.size();
     } else {
       const Entry e{priority(g, s), cost_value(g), s};
-      if (monotone_ && radix_.push(e)) {
-        size = radix_.size();
+      if (monotone_ && radix_->push(e)) {
+        size = radix_->size();
       } else {
         if (monotone_) leave_monotone_list();
         heap_.push_back(e);
@@ -264,7 +264,7 @@ class SearchStore {
 
   // The next open entry, stale or not, in priority order (random order for Frontier::random).
   bool take(Entry& e) {
-    if (monotone_) return radix_.pop(e);
+    if (monotone_) return radix_->pop(e);
     if (heap_.empty()) return false;
     if (random_)
       std::swap(heap_[rng_.next_below(heap_.size())], heap_.back());
@@ -280,7 +280,7 @@ class SearchStore {
   // the run.
   [[gnu::noinline]] void leave_monotone_list() {
     monotone_ = false;
-    radix_.drain([this](const Entry& e) { heap_.push_back(e); });
+    radix_->drain([this](const Entry& e) { heap_.push_back(e); });
     std::make_heap(heap_.begin(), heap_.end(), lower_priority);
   }
 
@@ -296,7 +296,7 @@ class SearchStore {
   SplitMix64 rng_;
   typename MapPolicy::template type<State, Node, typename G::Hash> visited_;
   std::vector<Entry, HugePageAllocator<Entry>> heap_;
-  RadixOpenList<Entry> radix_;
+  LentOpenList<Entry> radix_;                      // borrowed only when monotone
   std::deque<std::pair<State, Cost>> fifo_queue_;  // BFS: each state with its g
   std::uint64_t reopened_ = 0;
   std::uint64_t peak_open_ = 0;
