@@ -16,8 +16,14 @@ bash scripts/build.sh build
 echo "== tests (Release)"
 (cd build && ctest_run --timeout 600)
 
+# The sanitizer builds compile at -O1 with line tables only (-g1: enough for the sanitizers'
+# stack traces). At -O2 -g the ASan build cost twice the compile time (2,067 s of CPU against
+# 1,091 s, one translation unit 345 s against 125 s), while its tests ran no faster (343 s
+# against 327 s).
+sanitizer_flags="-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG"
+
 echo "== build (ASan + UBSan)"
-bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo "$sanitizer_flags" \
   -DHPCPLAN_SANITIZE=address,undefined -DHPCPLAN_BUILD_BENCH=OFF
 echo "== tests (ASan + UBSan)"
 # (The MPI suites run without leak checks: tests/mpi/CMakeLists.txt says why.)
@@ -31,7 +37,8 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktra
   -E '^(Cli\.EveryNumericOptionRefusesBadValues|WaterValidation\..*|Simulator\.DamBreakCrossing)$')
 
 echo "== build (ThreadSanitizer: threaded tests)"
-bash scripts/build.sh build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHPCPLAN_SANITIZE=thread \
+bash scripts/build.sh build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo "$sanitizer_flags" \
+  -DHPCPLAN_SANITIZE=thread \
   -DHPCPLAN_BUILD_BENCH=OFF -DHPCPLAN_BUILD_CLI=OFF --target hpcplan_unit_tests --target hpcplan_sim_tests
 echo "== tests (ThreadSanitizer)"
 export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1

@@ -83,8 +83,9 @@ TEST(Stop, AnotherThreadCancelsAGridSearchWithinMilliseconds) {
   EXPECT_LT(*std::min_element(latencies.begin(), latencies.end()), 10.0);
 }
 
-// The dense visited store's pool lends arrays to concurrent searches on several threads (one
-// set each, returned under a mutex). Four threads solving small lattices at once, eight times
+// The dense visited store's pool and the radix open list's pool (IdlePool) lend to concurrent
+// searches on several threads: Dijkstra and A* with the lattice heuristic both take a radix
+// list. Four threads solving small lattices at once, eight times
 // each, must each find exactly the serial answer; under ThreadSanitizer (label threads) this
 // also checks the pool's hand-offs.
 TEST(Stop, ConcurrentSearchesShareTheDenseStorePool) {

@@ -6,8 +6,7 @@
 // bumping the generation: nothing is cleared.
 //
 // The arrays are allocated once and reused by later runs: a process-wide pool per entry type
-// lends them to one map at a time (OMPL's benchmark runs every solve on a fresh thread, so a
-// thread-local pool would not survive). Pages come from the huge-page allocator, so only the
+// (IdlePool) lends them to one map at a time. Pages come from the huge-page allocator, so only the
 // part of the lattice a search touches is ever faulted in, and a later run over the same part
 // faults nothing.
 //
@@ -15,11 +14,11 @@
 #include <cstdint>
 #include <cstring>
 #include <memory>
-#include <mutex>
 #include <utility>
 #include <vector>
 
 #include "hpcplan/core/huge_page_allocator.hpp"
+#include "hpcplan/core/idle_pool.hpp"
 
 namespace hpcplan::search {
 
@@ -81,27 +80,11 @@ class StampedDenseMap {
       HugePageAllocator<std::uint32_t>().deallocate(stamps, capacity);
     }
   };
-  struct Pool {
-    std::mutex mutex;
-    std::vector<std::unique_ptr<Arrays>> idle;
-  };
-  static Pool& pool() {
-    static Pool p;
-    return p;
-  }
+  using Pool = IdlePool<Arrays>;
 
   static Arrays* borrow(std::uint64_t n) {
-    std::unique_ptr<Arrays> a;
-    {
-      Pool& p = pool();
-      const std::lock_guard<std::mutex> lock(p.mutex);
-      if (!p.idle.empty()) {
-        a = std::move(p.idle.back());
-        p.idle.pop_back();
-      }
-    }
-    if (!a) a = std::make_unique<Arrays>();
-    if (a->capacity < n) {
+    std::unique_ptr<Arrays> a = Pool::take();
+    if (!a || a->capacity < n) {
       a = std::make_unique<Arrays>();
       a->slots = HugePageAllocator<Slot>().allocate(n);
       a->stamps = HugePageAllocator<std::uint32_t>().allocate(n);
@@ -116,9 +99,7 @@ class StampedDenseMap {
 
   void give_back() {
     if (arrays_ == nullptr) return;
-    Pool& p = pool();
-    const std::lock_guard<std::mutex> lock(p.mutex);
-    p.idle.emplace_back(arrays_);
+    Pool::keep(std::unique_ptr<Arrays>(arrays_));
     arrays_ = nullptr;
   }
 
