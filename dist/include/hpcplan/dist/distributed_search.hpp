@@ -99,7 +99,9 @@ class DistributedSearch {
         options_(adjusted(options, dist)),
         dist_(dist),
         rank_(comm.rank()),
-        store_(h, options_),
+        // States from other ranks, and reopened ones, can arrive below the last priority
+        // popped here; the store keeps those in its binary heap and the rest in the radix list.
+        store_(h, options_, search::kMonotonePriorities<Heuristic, G>),
         sent_(dist.sent_filter_log2, dist.scheme == Scheme::level_sync) {}
 
   // Collective: every rank calls it with the same arguments.

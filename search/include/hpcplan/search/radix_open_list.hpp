@@ -14,8 +14,9 @@
 // (a stack) expanded 19x more states on a dense 4D field.
 //
 // Monotonicity is the caller's promise. push() reports a broken one (a key below the last
-// popped, or a negative priority) by returning false. The caller can then move to an ordinary
-// heap rather than return a wrong answer.
+// popped, or a negative priority) by returning false and storing nothing. The caller keeps such
+// entries elsewhere (SearchStore: in a binary heap popped before this list) rather than return
+// a wrong answer.
 //
 // Threads: one list belongs to one search on one thread.
 #include <algorithm>
@@ -23,8 +24,10 @@
 #include <bit>
 #include <cstdint>
 #include <memory>
-#include <mutex>
+#include <utility>
 #include <vector>
+
+#include "hpcplan/core/idle_pool.hpp"
 
 namespace hpcplan::search {
 
@@ -37,15 +40,17 @@ template <class Entry>
 class EqualPriorityQueue {
  public:
   [[gnu::always_inline]] void push(const Entry& e) {
-    if (head_ == top_.size() || e.g > top_.back().g) {
-      if (!below_.empty() && e.g <= below_.back().g && head_ == top_.size()) {
-        insert_below(e);  // shallower than the deepest waiting: not what a search pushes
+    if (head_ == top_.size()) {
+      // No deepest group waits: e starts one, unless it is no deeper than what waits below
+      // (not what a search pushes, but kept correct).
+      if (!below_.empty() && e.g <= below_.back().g) {
+        insert_below(e);
         return;
       }
-      // Deeper than the deepest group: that group (oldest first) moves below.
-      for (std::size_t i = top_.size(); i > head_; --i) below_.push_back(top_[i - 1]);
       top_.clear();
       head_ = 0;
+    } else if (e.g > top_.back().g) {
+      move_top_below();  // a deeper group starts
     } else if (e.g < top_.back().g) {
       insert_below(e);
       return;
@@ -80,13 +85,15 @@ class EqualPriorityQueue {
     below_.clear();
     head_ = 0;
   }
-  void reserve(std::size_t n) {
-    below_.reserve(n);
-    top_.reserve(64);
-  }
   std::size_t capacity() const { return top_.capacity() + below_.capacity(); }
 
  private:
+  // The group waiting at the top (oldest first) goes below it, under the same order.
+  void move_top_below() {
+    for (std::size_t i = top_.size(); i > head_; --i) below_.push_back(top_[i - 1]);
+    top_.clear();
+    head_ = 0;
+  }
   // The entries waiting below keep g ascending, the oldest of equal g at the back.
   [[gnu::noinline]] void insert_below(const Entry& e) {
     std::size_t at = below_.size();
@@ -106,13 +113,10 @@ class RadixOpenList {
   [[gnu::always_inline]] bool push(const Entry& e) {
     const std::uint64_t k = key(e);
     if (k < last_ || (k >> 63) != 0) return false;
-    if (k == last_) {
+    if (k == last_)
       equal_.push(e);
-    } else {
-      const int b = 64 - std::countl_zero(k ^ last_);
-      buckets_[b].push_back(e);
-      occupied_ |= std::uint64_t{1} << b;
-    }
+    else
+      place(e, k);
     ++size_;
     return true;
   }
@@ -147,15 +151,6 @@ class RadixOpenList {
     last_ = 0;  // a cleared list starts over (the pool lends it to the next search)
     size_ = 0;
   }
-  // Hands every stored entry to `sink` and empties the list (the switch to a heap).
-  template <class Sink>
-  void drain(Sink&& sink) {
-    equal_.for_each(sink);
-    for (auto& b : buckets_)
-      for (const Entry& e : b) sink(e);
-    clear();
-  }
-  void reserve(std::size_t n) { equal_.reserve(n); }
   std::size_t capacity_bytes() const {
     std::size_t n = refilled_.capacity() + equal_.capacity();
     for (const auto& b : buckets_) n += b.capacity();
@@ -166,6 +161,13 @@ class RadixOpenList {
   static std::uint64_t key(const Entry& e) { return std::bit_cast<std::uint64_t>(e.f); }
   static bool by_key(const Entry& a, const Entry& b) { return key(a) < key(b); }
 
+  // Into the bucket of the highest bit where k differs from the last key (k != last_).
+  [[gnu::always_inline]] void place(const Entry& e, std::uint64_t k) {
+    const int b = 64 - std::countl_zero(k ^ last_);
+    buckets_[b].push_back(e);
+    occupied_ |= std::uint64_t{1} << b;
+  }
+
   // Nothing equals the last key: the least key lives in the lowest occupied bucket. It becomes
   // the new last key, and that bucket's entries move to lower buckets or to `equal_` (each
   // lands below b, since the entries agree with the new key above bit b-1).
@@ -175,13 +177,10 @@ class RadixOpenList {
     last_ = key(*std::min_element(from.begin(), from.end(), by_key));
     for (const Entry& e : from) {
       const std::uint64_t k = key(e);
-      if (k == last_) {
+      if (k == last_)
         refilled_.push_back(e);
-      } else {
-        const int to = 64 - std::countl_zero(k ^ last_);
-        buckets_[to].push_back(e);
-        occupied_ |= std::uint64_t{1} << to;
-      }
+      else
+        place(e, k);
     }
     from.clear();
     occupied_ &= ~(std::uint64_t{1} << b);
@@ -197,13 +196,11 @@ class RadixOpenList {
   std::size_t size_ = 0;
 };
 
-// Lends lists to searches and takes them back emptied, with their vectors' capacity. A search
-// that allocated its own handed the pages back to the kernel at its end (glibc trims the top
-// of the heap) and faulted them in again in the next run, at about 20 us a page on the VMs
-// measured: a warm 8D OMPL query took 8 ms instead of 2.9. A list that grew past kKeepBytes
-// is freed rather than kept.
+// Lends lists to searches and takes them back emptied, with their vectors' capacity (see
+// IdlePool: a warm 8D OMPL query took 8 ms instead of 2.9 while every search allocated its
+// own). A list that grew past kKeepBytes is freed rather than kept.
 //
-// Threads: the pool is guarded by a mutex; a lent list belongs to one search.
+// Threads: the pool may be used from any thread; a lent list belongs to one search.
 template <class Entry>
 class LentOpenList {
  public:
@@ -214,14 +211,8 @@ class LentOpenList {
 
   void borrow() {
     give_back();
-    Pool& p = pool();
-    const std::lock_guard<std::mutex> lock(p.mutex);
-    if (p.idle.empty()) {
-      list_ = std::make_unique<RadixOpenList<Entry>>();
-    } else {
-      list_ = std::move(p.idle.back());
-      p.idle.pop_back();
-    }
+    list_ = IdlePool<RadixOpenList<Entry>>::take();
+    if (!list_) list_ = std::make_unique<RadixOpenList<Entry>>();
   }
   explicit operator bool() const { return list_ != nullptr; }
   RadixOpenList<Entry>* operator->() const { return list_.get(); }
@@ -229,22 +220,11 @@ class LentOpenList {
   static constexpr std::size_t kKeepBytes = std::size_t{64} << 20;
 
  private:
-  struct Pool {
-    std::mutex mutex;
-    std::vector<std::unique_ptr<RadixOpenList<Entry>>> idle;
-  };
-  static Pool& pool() {
-    static Pool p;
-    return p;
-  }
   void give_back() {
     if (!list_) return;
     list_->clear();
-    if (list_->capacity_bytes() <= kKeepBytes) {
-      Pool& p = pool();
-      const std::lock_guard<std::mutex> lock(p.mutex);
-      p.idle.push_back(std::move(list_));
-    }
+    if (list_->capacity_bytes() <= kKeepBytes)
+      IdlePool<RadixOpenList<Entry>>::keep(std::move(list_));
     list_.reset();
   }
 

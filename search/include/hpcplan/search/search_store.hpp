@@ -1,7 +1,8 @@
 #pragma once
 // The state store every best-first search shares: the visited map (g, parent move, closed
-// flag per state) and the open list (a binary heap on f; a radix heap when the caller promises
-// monotone priorities, see kMonotonePriorities; a FIFO for BFS). The serial engine
+// flag per state) and the open list (a binary heap on f; a radix heap when the caller says the
+// priorities rarely fall, see kMonotonePriorities, with the binary heap taking the few entries
+// that arrive below its last key; a FIFO for BFS). The serial engine
 // (best_first.hpp) and the distributed engines (mpi/) both drive this one store, so the rules
 // for inserting, improving, reopening and popping states are written once.
 //
@@ -104,8 +105,10 @@ class SearchStore {
   };
   enum class Offered { pushed, ignored, over_budget };
 
-  // monotone: the caller promises priorities that never fall below the last popped one (see
-  // kMonotonePriorities), and the open list is a radix heap instead of a binary heap.
+  // monotone: the priorities pushed are expected to stay at or above the last one popped (see
+  // kMonotonePriorities), so the open list is a radix heap. One that falls below after all
+  // goes to the binary heap, which is popped first while it holds anything: every entry there
+  // is below every radix entry, so the order stays exact.
   SearchStore(const Heuristic& h, const Options& options, bool monotone = false)
       : h_(h),
         fifo_(options.frontier == Frontier::fifo),
@@ -197,13 +200,14 @@ class SearchStore {
   // Lowest priority on the open list (may belong to a stale entry), +inf when empty.
   double best_priority() const {
     if (fifo_) return fifo_queue_.empty() ? kInfinity : cost_value(fifo_queue_.front().second);
+    if (!heap_.empty()) return heap_.front().f;  // below every radix entry, if any
     double f;
-    if (monotone_) return radix_->least(f) ? f : kInfinity;
-    return heap_.empty() ? kInfinity : heap_.front().f;
+    return monotone_ && radix_->least(f) ? f : kInfinity;
   }
   bool open_empty() const { return open_size() == 0; }
   std::size_t open_size() const {
-    return fifo_ ? fifo_queue_.size() : monotone_ ? radix_->size() : heap_.size();
+    if (fifo_) return fifo_queue_.size();
+    return heap_.size() + (monotone_ ? radix_->size() : 0);
   }
   void clear_open() {
     heap_.clear();
@@ -250,22 +254,22 @@ class SearchStore {
       size = fifo_queue_.size();
     } else {
       const Entry e{priority(g, s), cost_value(g), s};
-      if (monotone_ && radix_->push(e)) {
-        size = radix_->size();
-      } else {
-        if (monotone_) leave_monotone_list();
+      if (!monotone_ || !radix_->push(e)) {
+        // Below the radix list's last key (a late arrival from another rank, a reopened
+        // state, a heuristic that is not consistent after all): the binary heap holds it.
         heap_.push_back(e);
         if (!random_) std::push_heap(heap_.begin(), heap_.end(), lower_priority);
-        size = heap_.size();
       }
+      size = open_size();
     }
     peak_open_ = std::max<std::uint64_t>(peak_open_, size);
   }
 
   // The next open entry, stale or not, in priority order (random order for Frontier::random).
+  // With the radix list in use, the heap holds only entries below its last key, so it goes
+  // first.
   bool take(Entry& e) {
-    if (monotone_) return radix_->pop(e);
-    if (heap_.empty()) return false;
+    if (heap_.empty()) return monotone_ && radix_->pop(e);
     if (random_)
       std::swap(heap_[rng_.next_below(heap_.size())], heap_.back());
     else
@@ -273,15 +277,6 @@ class SearchStore {
     e = heap_.back();
     heap_.pop_back();
     return true;
-  }
-
-  // A priority fell after all (a heuristic that is not consistent after all): the order is
-  // still served correctly by the binary heap, so the open entries move there for the rest of
-  // the run.
-  [[gnu::noinline]] void leave_monotone_list() {
-    monotone_ = false;
-    radix_->drain([this](const Entry& e) { heap_.push_back(e); });
-    std::make_heap(heap_.begin(), heap_.end(), lower_priority);
   }
 
   static constexpr std::uint64_t kInitial = 1 << 14;  // states reserved up front
