@@ -3,11 +3,13 @@
 # ompl` runs the grid planner (shortcut and lattice path) and its peers on the same world in
 # the same invocation: BIT*, ABIT*, AIT*, RRT-Connect, FMT* with radius connections and FMT*
 # (k-nearest, d <= 6: its neighbour computation ignores the time limit and took 83 s of a 5 s
-# budget at 10D), RUNS runs each at the largest budget; the 2-rank MPI grid planner runs under
-# mpirun. The last table puts them side by side: median time to a first solution, success
-# rate, and each peer's time over the grid planner's. Budgets below the largest are read from the same runs by the analysis (an anytime
-# planner's state at time b does not depend on a limit it has not reached; a one-shot planner
-# succeeds within b iff it finished by b). Writes results/ompl/ and prints the tables.
+# budget at 10D), RUNS runs each at the largest budget, after one untimed warm-up solve each
+# (--warmup 1: otherwise the first planner listed pays for the process's first searches).
+# The 2-rank MPI grid planner runs under mpirun. The last table puts them side by side:
+# median time to a first solution, success rate, and each peer's time over the grid
+# planner's. Budgets below the largest are read from the same runs by the analysis (an
+# anytime planner's state at time b does not depend on a limit it has not reached; a one-shot
+# planner succeeds within b iff it finished by b). Writes results/ompl/ and prints the tables.
 # Usage: bash bench/ompl_sweep.sh [runs] [largest budget in s]   (env: DIMS, OUT)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,7 +24,7 @@ for d in ${DIMS:-2 4 6 8 10}; do
   planners=gridastar,gridastar_lattice,bitstar,abitstar,aitstar,rrtconnect,fmt_radius
   ((d <= 6)) && planners+=,fmt
   echo "== ${d}D: $planners, $runs run(s) of ${budget} s" >&2
-  "$bin" ompl --dims "$d" --planners "$planners" --time "$budget" --runs "$runs" \
+  "$bin" ompl --dims "$d" --planners "$planners" --time "$budget" --runs "$runs" --warmup 1 \
     --log "$out/d$d.log" --csv "$out/d$d.csv" >&2
   # The distributed grid planner (lattice path) under mpirun, same field and start/goal.
   tmp=$out/d$d.mpi.csv.tmp

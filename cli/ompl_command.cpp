@@ -85,6 +85,9 @@ Action register_ompl_command(CLI::App& app) {
       ->capture_default_str();
   add_number(cmd, "--time", o.time_s, "Seconds per run", 1e-6, 3600)->capture_default_str();
   add_number(cmd, "--runs", o.runs, "Runs per planner", 1, 10000)->capture_default_str();
+  add_number(cmd, "--warmup", o.warmup,
+             "Untimed solves of each planner first (at most 1 s each), not recorded", 0, 100)
+      ->capture_default_str();
   add_number(cmd, "--seed", o.seed, "GOG field and OMPL random seed")->capture_default_str();
   add_number(cmd, "--extent", o.extent, "Cells per axis; bounds are [0, extent]", 2, 1000)
       ->capture_default_str();

@@ -226,6 +226,7 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
       {"ompl", "--dims", "11"},
       {"ompl --dims 2", "--time", "3601"},
       {"ompl --dims 2", "--runs", "10001"},
+      {"ompl --dims 2", "--warmup", "101"},
       {"ompl --dims 2", "--seed", "18446744073709551616"},
       {"ompl --dims 2", "--extent", "1001"},
       {"ompl --dims 2", "--density", "2"},
@@ -268,7 +269,7 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
       ++tried;
     }
   }
-  EXPECT_EQ(tried, 50 * 10 + 50);
+  EXPECT_EQ(tried, 51 * 10 + 51);
 }
 
 }  // namespace

@@ -45,6 +45,20 @@ for r in rows:
 print("ompl_cli: database and CSV ok")
 PY
 
+# Warm-up solves are untimed and unrecorded: the CSV holds only the timed runs, numbered from 0.
+"$bin" ompl --dims 2 --planners gridastar,rrtconnect --time 0.3 --runs 2 --warmup 1 --seed 1 \
+  --csv "$dir/warm.csv" > /dev/null || fail "ompl run with --warmup failed"
+python3 - "$dir/warm.csv" <<'PY' || exit 1
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+got = sorted((r["planner"], r["run"]) for r in rows)
+want = [("gridastar", "0"), ("gridastar", "1"), ("rrtconnect", "0"), ("rrtconnect", "1")]
+if got != want:
+    sys.exit(f"FAIL: --warmup 1 gave rows {got}, expected {want}")
+if any(r["solved"] != "1" or r["path_valid"] != "1" for r in rows):
+    sys.exit("FAIL: a run after the warm-up did not solve with a valid path")
+PY
+
 # Bad input: exit 2, one line on stderr, no output files.
 bad() {
   local what=$1; shift
@@ -58,6 +72,7 @@ bad() {
 bad "unknown planner" --dims 2 --planners gridastar,warpdrive
 bad "zero time" --dims 2 --time 0
 bad "zero runs" --dims 2 --runs 0
+bad "too many warm-ups" --dims 2 --warmup 101
 bad "one dimension" --dims 1
 bad "eleven dimensions" --dims 11
 bad "bad resolution" --dims 2 --resolution 2

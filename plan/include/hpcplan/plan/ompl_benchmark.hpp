@@ -34,6 +34,9 @@ struct OmplBenchOptions {
   std::vector<std::string> planners{"gridastar", "bitstar", "fmt"};
   double time_s = 5.0;  // per run
   int runs = 10;
+  // Untimed solves of each planner before the timed runs (each at most 1 s), so the first
+  // planner listed does not pay alone for the process's first searches.
+  int warmup = 0;
   std::uint64_t seed = 1;         // GOG field and OMPL's random generator
   double resolution_cells = 0.1;  // discrete motion checks: spacing, in cell widths
   std::string motion = "exact";   // exact | discrete (sampling/gog_space.hpp)
