@@ -20,7 +20,7 @@ class SentFilter {
         slots_(slots_log2 > 0 ? mask_ + 1 : 0) {}
 
   // True if the record must be sent; records it as sent.
-  bool admit(const State& s, double g) {
+  [[gnu::always_inline]] bool admit(const State& s, double g) {
     if (slots_.empty()) return true;
     Slot& slot = slots_[Hash{}(s)&mask_];
     if (slot.used && slot.state == s && (any_cost_ || slot.g <= g)) {
