@@ -115,6 +115,43 @@ TEST(RadixOpenList, RefusesAFallingOrNegativePriority) {
   EXPECT_EQ(popped, (std::vector<int>{4, 2}));  // the refused ones were not stored
 }
 
+// States without edges, so a test can drive the store by hand.
+struct PointGraph {
+  using State = std::uint64_t;
+  using Cost = double;
+  using Move = std::uint8_t;
+  using Hash = std::hash<std::uint64_t>;
+  static constexpr Move kNoMove = 0xFF;
+  State predecessor(const State& s, Move) const { return s; }
+  double checked_edge_length(const State&, const State&) const { return 1.0; }
+  std::uint64_t collision_checks() const { return 0; }
+  template <class Emit>
+  void for_each_successor(const State&, Emit&&) const {}
+};
+
+// Entries offered below the radix list's last popped priority (a state from another rank, a
+// reopened one) wait in the store's binary heap and must leave before every radix entry, in
+// priority order.
+TEST(RadixOpenList, StorePopsLateEntriesBeforeTheRadixList) {
+  const search::ZeroHeuristic h;
+  search::SearchStore<search::DefaultVisitedMap, PointGraph, search::ZeroHeuristic> store(
+      h, search::Options{}, /*monotone=*/true);
+  store.offer(1, 5.0, 0);
+  std::uint64_t x;
+  double g, f;
+  ASSERT_TRUE(store.pop(x, g, f));
+  EXPECT_EQ(x, 1u);  // the radix list's last key is now 5
+  store.offer(2, 7.0, 0);
+  store.offer(3, 3.0, 0);  // late
+  store.offer(4, 4.0, 0);  // late
+  EXPECT_EQ(store.open_size(), 3u);
+  EXPECT_EQ(store.best_priority(), 3.0);
+  std::vector<std::uint64_t> order;
+  while (store.pop(x, g, f)) order.push_back(x);
+  EXPECT_EQ(order, (std::vector<std::uint64_t>{3, 4, 2}));
+  EXPECT_TRUE(store.open_empty());
+}
+
 // Admissible but not consistent, while claiming to be: the exact free distance at states with
 // an even first coordinate, nothing elsewhere, so f falls by up to the whole distance along a
 // move. The store must keep each falling priority in its binary heap, pop those first, reopen
