@@ -77,12 +77,15 @@ BENCHMARK(BM_DefaultProblem)->DenseRange(2, 10, 2)->Unit(benchmark::kMillisecond
 // One query of the default problem on a field built once (as the OMPL adapter runs it), with
 // the hash map and with the dense store the planner picks for small lattices: the whole
 // solve_grid call per iteration (report included), so the figure is what a caller waits for.
-template <class MapPolicy>
+// Query/dense_every_state: the same with 2D A*'s jump points off, the figure to compare them
+// against in one run.
+template <class MapPolicy, bool JumpPoints = true>
 void BM_Query(benchmark::State& state) {
   const GridProblem p = default_problem(static_cast<int>(state.range(0)));
   const GogField field(p.dims, p.extent, p.gog);
   GridSearchOptions o;
   o.max_states = 100'000'000;  // as the adapter sets it once (no /proc read per query)
+  o.jump_points = JumpPoints;
   std::uint64_t expanded = 0;
   for (auto _ : state) {
     const GridReport r = solve_grid_with<MapPolicy>(field, p, o);
@@ -100,6 +103,11 @@ BENCHMARK(BM_Query<search::AbslFlatMap>)
 BENCHMARK(BM_Query<search::StampedDensePolicy>)
     ->Name("Query/dense")
     ->DenseRange(2, 3, 1)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK(BM_Query<search::StampedDensePolicy, false>)
+    ->Name("Query/dense_every_state")
+    ->Arg(2)
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 

@@ -29,6 +29,7 @@ struct GridArgs {
   bool json = false;
   dist::DistGridOptions dist;
   std::string mode = "async";
+  bool no_jump_points = false;
   std::vector<int> simulate_ranks;
   std::vector<int> simulate_shifts{0, 1};
 };
@@ -53,6 +54,7 @@ Action register_grid_command(CLI::App& app) {
   cmd->add_option("--goal", args->goal, "Goal state (default: corner extent-1, adjusted)");
   add_param(cmd, "max_states", args->options.max_states)->capture_default_str();
   add_param(cmd, "time_limit", args->options.time_limit_s)->capture_default_str();
+  add_param(cmd, "no_jump_points", args->no_jump_points);
   cmd->add_option("--connectivity", args->connectivity, "seed (1 or 2 axes) | full (d <= 4)")
       ->capture_default_str();
   add_number(cmd, "--threshold", p.gog.threshold, "GOG threshold c_v (0 = from --density)", 0, 49)
@@ -111,6 +113,7 @@ Action register_grid_command(CLI::App& app) {
     a.options.heuristic = parse_heuristic(a.heuristic);
     a.problem.connectivity = parse_connectivity(a.connectivity);
     if (weight->count() > 0) a.options.weight = a.weight;
+    a.options.jump_points = !a.no_jump_points;
     if (!a.start.empty()) a.problem.start = parse_coordinates(a.start, "--start");
     if (!a.goal.empty()) a.problem.goal = parse_coordinates(a.goal, "--goal");
 

@@ -116,7 +116,11 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
   if (dist.compare_serial && comm.rank() == 0) {
     // Before the distributed run (the other ranks wait at its opening barrier), so the two
     // never compete for cores.
-    const GridReport serial = solve_grid(problem, options);
+    // The ranks expand every lattice state, so the reference does too (no jump points at 2D):
+    // search overhead compares like with like.
+    GridSearchOptions serial_options = options;
+    serial_options.jump_points = false;
+    const GridReport serial = solve_grid(problem, serial_options);
     report.has_serial_reference = true;
     report.serial_status = serial.status;
     report.serial_cost = serial.cost;

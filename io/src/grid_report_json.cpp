@@ -92,6 +92,7 @@ nlohmann::json to_json(const GridReport& r, bool include_path) {
   j["ranks"] = r.ranks;
   j["key_words"] = r.key_words;
   j["visited_map"] = r.visited_map;
+  j["pruning"] = r.pruning;
   j["scheme"] = r.scheme;
   if (r.scheme != "serial") j["distributed"] = distributed_json(r);
   if (r.has_serial_reference) {
@@ -141,6 +142,7 @@ std::string to_summary(const GridReport& r) {
                 static_cast<unsigned long long>(r.counters.collision_checks),
                 static_cast<unsigned long long>(r.counters.peak_states));
   o << line;
+  if (r.pruning != "none") o << "  pruning    " << r.pruning << " (counts are of jump points)\n";
   std::snprintf(line, sizeof line, "  time       %.3f ms search, %.3f ms set-up\n",
                 r.counters.time_ms, r.setup_ms);
   o << line;

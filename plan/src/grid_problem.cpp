@@ -26,8 +26,12 @@ const std::vector<GridEntry>& grid_entries() {
     const std::vector<std::string> common{"heuristic", "connectivity", "max_states", "time_limit"};
     std::vector<std::string> weighted = common;
     weighted.insert(weighted.begin(), "weight");
+    std::vector<std::string> with_jump_points = common;
+    with_jump_points.push_back("no_jump_points");
     return std::vector<GridEntry>{
-        {GridAlgorithm::astar, {"astar", "grid search", worlds, common, "A* (f = g + h), optimal"}},
+        {GridAlgorithm::astar,
+         {"astar", "grid search", worlds, with_jump_points,
+          "A* (f = g + h), optimal; at 2D on the lattice's jump points"}},
         {GridAlgorithm::wastar,
          {"wastar", "grid search", worlds, weighted,
           "weighted A* (f = g + w h), closed states not reopened, cost <= w x optimal"}},

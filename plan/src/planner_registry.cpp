@@ -35,6 +35,7 @@ std::vector<ParamSpec> parameter_table() {
               "stop with budget_exceeded beyond this many stored states (0: the grid derives it "
               "from available memory; worlds: none)"),
       real("time_limit", 0, 1e9, "0", "seconds (0 = none)"),
+      flag("no_jump_points", "2D A*: expand every lattice state, not only the jump points"),
       // Box maps and sphere worlds (hpcplan map3d / sphere2d).
       real("resolution", 1e-9, 1e9, "0.1 (map3d), 0.25 (sphere2d)", "grid spacing of the searches"),
       real("spacing", 0, 1e9, "0",

@@ -32,6 +32,7 @@ struct GridReport : Result<std::vector<int>> {
   std::string heuristic;
   std::uint64_t max_states = 0;
   std::string visited_map;
+  std::string pruning = "none";  // none | jump_points (2D A*; its path is still unit moves)
   int ranks = 1;
   // Distributed runs: how states were spread and exchanged.
   std::string scheme = "serial";  // serial | async | bulk_sync | level_sync

@@ -5,6 +5,7 @@
 
 #include "hpcplan/core/progress.hpp"
 #include "hpcplan/core/stopwatch.hpp"
+#include "hpcplan/graph/jump_point_graph.hpp"
 #include "hpcplan/graph/lattice_graph.hpp"
 #include "hpcplan/graph/lattice_heuristic.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
@@ -48,9 +49,48 @@ auto with_heuristic(const GridSearchOptions& o, const GridProblem& problem, cons
   return search(SeedRuleHeuristic<W>(layout, goal));
 }
 
+// Whether the run searches the lattice's jump points instead of its every state: plain A* on a
+// 2D lattice (both connectivities are the same 8 moves there) that the jump graph can span.
+inline bool uses_jump_points(const GridProblem& problem, const GridSearchOptions& o) {
+  return o.jump_points && o.algorithm == GridAlgorithm::astar && problem.dims == 2 &&
+         problem.extent <= JumpPointGraph<GogCells2D>::kMaxExtent;
+}
+
+template <class MapPolicy>
+void run_jump_point_search(const GogField& field, const GridProblem& problem,
+                           const GridSearchOptions& o, GridReport& report) {
+  const GogCells2D cells(field);
+  const JumpPointGraph<GogCells2D> graph(cells, {report.goal[0], report.goal[1]});
+  const auto start = graph.pack(report.start[0], report.start[1]);
+  const auto goal = graph.pack(report.goal[0], report.goal[1]);
+  auto eo = engine_options(o, report.weight, report.max_states);
+  if constexpr (std::is_same_v<MapPolicy, search::StampedDensePolicy>)
+    eo.dense_keys = graph.layout().dense_index_bound();
+  const auto r = with_heuristic<1>(o, problem, graph.layout(), report.goal, [&](const auto& h) {
+    return search::best_first_search<MapPolicy>(graph, start, goal, h, eo);
+  });
+  report.status = r.status;
+  report.cost = r.cost;
+  report.counters = r.counters;
+  report.visited_map = MapPolicy::name;
+  report.pruning = "jump_points";
+  // Hops and the path count lattice moves, as without pruning.
+  const auto steps = graph.unit_steps(r.path);
+  report.hops = steps.empty() ? 0 : steps.size() - 1;
+  if (o.keep_path)
+    for (const auto& s : steps) {
+      const auto c = graph.unpack(s);
+      report.path.push_back({c[0], c[1]});
+    }
+}
+
 template <class MapPolicy, int W>
 void run_search(const GogField& field, const GridProblem& problem, const GridSearchOptions& o,
                 GridReport& report) {
+  if constexpr (W == 1) {
+    if (uses_jump_points(problem, o))
+      return run_jump_point_search<MapPolicy>(field, problem, o, report);
+  }
   LatticeGraph<W> graph(field, problem.connectivity);
   const auto start = graph.pack(report.start);
   const auto goal = graph.pack(report.goal);

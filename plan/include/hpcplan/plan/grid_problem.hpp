@@ -47,6 +47,9 @@ struct GridSearchOptions {
   // expansion (OMPL's termination condition).
   std::function<bool()> stop_when;
   bool keep_path = false;
+  // 2D A* (weight 1) searches the lattice's jump points (graph/jump_point_graph.hpp): the same
+  // optimal cost, far fewer expansions. False: every lattice state, as at other d.
+  bool jump_points = true;
 };
 
 // Throws InputError for anything a user could have got wrong.

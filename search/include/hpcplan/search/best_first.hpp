@@ -6,6 +6,8 @@
 //   weighted A* heap on f = g + w*h, closed states are not reopened (keeps the w bound)
 //   Dijkstra    A* with h = 0
 //   BFS         FIFO frontier over hop counts, goal tested on generation (fewest hops)
+//   jump point search   A* on graph/jump_point_graph.hpp, whose successors depend on the move
+//               that reached a state (ExpandsAfterArrival)
 // The store (visited map + open list) is shared with the distributed engines in mpi/.
 #include <cmath>
 #include <cstdint>
@@ -56,6 +58,14 @@ concept FiltersSuccessors = requires(const G& g, const typename G::State& s) {
       [](const typename G::State&, typename G::Cost) { return true; });
 };
 
+// Graphs whose successors depend on how a state was reached (jump point search prunes by the
+// arriving direction) are handed the move the store keeps for it.
+template <class G>
+concept ExpandsAfterArrival = requires(const G& g, const typename G::State& s, typename G::Move m) {
+  g.for_each_successor_after(s, m,
+                             [](const typename G::State&, typename G::Cost, typename G::Move) {});
+};
+
 template <class MapPolicy = DefaultVisitedMap, SearchGraph G, class Heuristic>
 Result<typename G::State> best_first_search(const G& graph, const typename G::State& start,
                                             const typename G::State& goal, const Heuristic& h,
@@ -103,7 +113,9 @@ Result<typename G::State> best_first_search(const G& graph, const typename G::St
       else if (is_fifo && offered == Store::Offered::pushed && t == goal)
         goal_generated = true;
     };
-    if constexpr (FiltersSuccessors<G>)
+    if constexpr (ExpandsAfterArrival<G>)
+      graph.for_each_successor_after(x, store.find(x)->move, emit);
+    else if constexpr (FiltersSuccessors<G>)
       graph.for_each_successor(x, emit, [&](const State& t, const Cost& cost) {
         return store.could_improve(t, gx + cost);
       });
