@@ -5,7 +5,8 @@
 //    seed-002 lattice, and the lattice path becomes continuous cell centres with the exact
 //    start and goal states at its ends (a segment inside one cell is always valid);
 //  - with `shortcut` on, the path is then shortened in continuous space with the space
-//    information's own motion validator (OMPL's PathSimplifier, then hpcplan's tightener),
+//    information's own motion validator (from 4D up OMPL's PathSimplifier, then hpcplan's
+//    tightener; in 2D and 3D the tightener alone),
 //    which takes grid paths below the lattice's quality limit (sqrt(d/2) in open space), within
 //    a budget of `smoothing_budget` times the search's own time;
 //  - the lattice's collision checks are added to the world's counter, so checks are counted
@@ -27,6 +28,9 @@ namespace hpcplan::plan {
 
 class GridAStarPlanner : public ompl::base::Planner {
  public:
+  // The dimension from which the smoothing starts with OMPL's randomised simplifier.
+  static constexpr unsigned kSimplifierFromDims = 4;
+
   GridAStarPlanner(const sampling::GogSpace& space,
                    Connectivity connectivity = Connectivity::seed_pairs);
 
