@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -87,6 +89,30 @@ TEST(Cli, EveryAlgorithmRunsAndAgreesOnCost) {
       EXPECT_LE(cost, 2.0 * astar_cost + 1e-9);
     }
   }
+}
+
+// 2D A* prunes with jump points unless told not to; both give the same optimum, and both paths
+// are unit moves from start to goal.
+TEST(Cli, JumpPointsCanBeSwitchedOff) {
+  const CliRun pruned = run("grid --dims 2 --json --path");
+  const CliRun plain = run("grid --dims 2 --json --path --no-jump-points");
+  ASSERT_EQ(pruned.code, 0) << pruned.err;
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  const auto a = nlohmann::json::parse(pruned.out);
+  const auto b = nlohmann::json::parse(plain.out);
+  EXPECT_EQ(a["pruning"], "jump_points");
+  EXPECT_EQ(b["pruning"], "none");
+  EXPECT_NEAR(a["cost"].get<double>(), b["cost"].get<double>(), 1e-9);
+  EXPECT_LT(a["expanded"].get<std::uint64_t>(), b["expanded"].get<std::uint64_t>());
+  for (const auto* j : {&a, &b}) {
+    const auto& path = (*j)["path"];
+    ASSERT_EQ(path.size(), (*j)["hops"].get<std::size_t>() + 1);
+    for (std::size_t i = 1; i < path.size(); ++i)
+      for (int axis = 0; axis < 2; ++axis)
+        EXPECT_LE(std::abs(path[i][axis].get<int>() - path[i - 1][axis].get<int>()), 1);
+  }
+  const CliRun summary = run("grid --dims 2");
+  EXPECT_NE(summary.out.find("pruning    jump_points"), std::string::npos) << summary.out;
 }
 
 TEST(Cli, SummaryIsReadable) {
