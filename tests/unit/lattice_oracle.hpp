@@ -58,6 +58,22 @@ class Lattice {
     return std::sqrt(static_cast<double>(k));
   }
 
+  // Length of a path of lattice states, move by move under the rule; -1 at its first illegal
+  // move, whose index goes to *illegal_step when given.
+  double path_length(const std::vector<std::vector<int>>& path,
+                     std::size_t* illegal_step = nullptr) const {
+    double length = 0.0;
+    for (std::size_t i = 1; i < path.size(); ++i) {
+      const double len = move_length(path[i - 1], path[i]);
+      if (len <= 0) {
+        if (illegal_step) *illegal_step = i;
+        return -1.0;
+      }
+      length += len;
+    }
+    return length;
+  }
+
   template <class F>
   void neighbours(const std::vector<int>& a, F&& f) const {
     // Enumerate all 3^d offsets and keep the legal ones: slow and obviously complete.
