@@ -53,6 +53,9 @@ int main(int argc, char** argv) {
   CLI::App app{"hpcplan strong scaling: serial vs distributed medians as CSV"};
   GridProblem p;
   GridSearchOptions o;
+  // The ranks expand every lattice state; so does the serial reference (no 2D jump points),
+  // as with `hpcplan grid --compare-serial`.
+  o.jump_points = false;
   std::string algo = "dijkstra", label;
   std::vector<std::string> modes{"async"};
   std::vector<std::size_t> batches{512};
