@@ -142,7 +142,8 @@ ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition&
 void GridAStarPlanner::smooth(og::PathGeometric& path, const ob::PlannerTerminationCondition& ptc) {
   const double budget_s = smoothing_budget_ * last_.counters.time_ms / 1e3;
   const Stopwatch clock;
-  if (si_->getStateDimension() >= kSimplifierFromDims) {
+  const bool simplify = si_->getStateDimension() >= kSimplifierFromDims;
+  if (simplify) {
     og::PathSimplifier simplifier(si_, pdef_->getGoal(), pdef_->getOptimizationObjective());
     if (budget_s > 0)
       simplifier.simplify(
@@ -153,7 +154,11 @@ void GridAStarPlanner::smooth(og::PathGeometric& path, const ob::PlannerTerminat
       simplifier.simplify(path, ptc);
   }
   sampling::TighteningOptions tighten;
-  tighten.max_segment = 2.0;  // cell widths: enough vertices to wrap every corner
+  // Cell widths: enough vertices to wrap every corner. Without the simplifier first (below
+  // 4D) the string-pulled path is nearly taut, and longer pieces leave more rounds within the
+  // budget: at budget 1, 2D 1.137-1.145 -> 1.136 and 3D 1.118 -> 1.106 (9 runs each), with the
+  // converged length unchanged (1.128 / 1.129).
+  tighten.max_segment = simplify ? 2.0 : 8.0;
   tighten.pull_string = true;
   if (budget_s > 0) {
     tighten.time_limit_s = budget_s - clock.seconds();
