@@ -20,6 +20,18 @@ namespace og = ompl::geometric;
 
 namespace hpcplan::plan {
 
+namespace {
+
+// Whether a path of lattice cells changes direction at cell i (its ends count as turns).
+bool turns_at(const std::vector<std::vector<int>>& cells, std::size_t i) {
+  if (i == 0 || i + 1 == cells.size()) return true;
+  for (std::size_t a = 0; a < cells[i].size(); ++a)
+    if (cells[i][a] - cells[i - 1][a] != cells[i + 1][a] - cells[i][a]) return true;
+  return false;
+}
+
+}  // namespace
+
 GridAStarPlanner::GridAStarPlanner(const sampling::GogSpace& space, Connectivity connectivity)
     : ob::Planner(space.si, "GridAStar"), space_(space), connectivity_(connectivity) {
   specs_.approximateSolutions = false;
@@ -93,18 +105,10 @@ ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition&
   };
   path->append(start);
   // Only the cells where the lattice path turns: the centres between them lie on the same
-  // straight segments, so the path is the same curve with a fraction of the vertices (2D A*'s
-  // jump points, plus any turn the runs had), and the smoothing's passes over vertices cost
-  // less.
-  const auto& cells = last_.path;
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const bool turn = i == 0 || i + 1 == cells.size() || [&] {
-      for (std::size_t a = 0; a < cells[i].size(); ++a)
-        if (cells[i][a] - cells[i - 1][a] != cells[i + 1][a] - cells[i][a]) return true;
-      return false;
-    }();
-    if (turn) append_centre(cells[i]);
-  }
+  // straight segments, so the path is the same curve with a fraction of the vertices, and the
+  // smoothing's passes over vertices cost less.
+  for (std::size_t i = 0; i < last_.path.size(); ++i)
+    if (turns_at(last_.path, i)) append_centre(last_.path[i]);
   path->append(goal_state);
   // Drop the centres that coincide with the exact start or goal (zero-length segments).
   auto& states = path->getStates();

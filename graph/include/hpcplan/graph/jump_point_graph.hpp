@@ -29,7 +29,6 @@
 //
 // Threads: a graph belongs to one run (its check counter is a plain member).
 #include <array>
-#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <span>
@@ -98,6 +97,7 @@ class JumpPointGraph {
     return State{
         {static_cast<std::uint64_t>(x) | (static_cast<std::uint64_t>(y) << layout_.shift_of(1))}};
   }
+  State pack(std::span<const int> c) const { return pack(c[0], c[1]); }
   std::array<int, 2> unpack(const State& s) const {
     return {static_cast<int>(s.w[0] & layout_.mask()),
             static_cast<int>(s.w[0] >> layout_.shift_of(1))};

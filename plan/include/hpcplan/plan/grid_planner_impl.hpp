@@ -56,42 +56,12 @@ inline bool uses_jump_points(const GridProblem& problem, const GridSearchOptions
          problem.extent <= JumpPointGraph<GogCells2D>::kMaxExtent;
 }
 
-template <class MapPolicy>
-void run_jump_point_search(const GogField& field, const GridProblem& problem,
-                           const GridSearchOptions& o, GridReport& report) {
-  const GogCells2D cells(field);
-  const JumpPointGraph<GogCells2D> graph(cells, {report.goal[0], report.goal[1]});
-  const auto start = graph.pack(report.start[0], report.start[1]);
-  const auto goal = graph.pack(report.goal[0], report.goal[1]);
-  auto eo = engine_options(o, report.weight, report.max_states);
-  if constexpr (std::is_same_v<MapPolicy, search::StampedDensePolicy>)
-    eo.dense_keys = graph.layout().dense_index_bound();
-  const auto r = with_heuristic<1>(o, problem, graph.layout(), report.goal, [&](const auto& h) {
-    return search::best_first_search<MapPolicy>(graph, start, goal, h, eo);
-  });
-  report.status = r.status;
-  report.cost = r.cost;
-  report.counters = r.counters;
-  report.visited_map = MapPolicy::name;
-  report.pruning = "jump_points";
-  // Hops and the path count lattice moves, as without pruning.
-  const auto steps = graph.unit_steps(r.path);
-  report.hops = steps.empty() ? 0 : steps.size() - 1;
-  if (o.keep_path)
-    for (const auto& s : steps) {
-      const auto c = graph.unpack(s);
-      report.path.push_back({c[0], c[1]});
-    }
-}
-
-template <class MapPolicy, int W>
-void run_search(const GogField& field, const GridProblem& problem, const GridSearchOptions& o,
-                GridReport& report) {
-  if constexpr (W == 1) {
-    if (uses_jump_points(problem, o))
-      return run_jump_point_search<MapPolicy>(field, problem, o, report);
-  }
-  LatticeGraph<W> graph(field, problem.connectivity);
+// Searches one of the lattice's graphs (states packed in the lattice's key layout) and fills
+// the report. A graph whose moves are runs (the jump points) hands back its path as unit moves,
+// so hops and the path count lattice moves either way.
+template <class MapPolicy, int W, class Graph>
+void search_into_report(const Graph& graph, const GridProblem& problem, const GridSearchOptions& o,
+                        GridReport& report) {
   const auto start = graph.pack(report.start);
   const auto goal = graph.pack(report.goal);
   auto eo = engine_options(o, report.weight, report.max_states);
@@ -107,11 +77,35 @@ void run_search(const GogField& field, const GridProblem& problem, const GridSea
   });
   report.status = r.status;
   report.cost = r.cost;
-  report.hops = r.hops;
   report.counters = r.counters;
   report.visited_map = MapPolicy::name;
-  if (o.keep_path)
-    for (const auto& s : r.path) report.path.push_back(graph.unpack(s));
+  auto take_path = [&](const auto& moves) {
+    report.hops = moves.empty() ? 0 : moves.size() - 1;
+    if (o.keep_path)
+      for (const auto& s : moves) {
+        const auto c = graph.unpack(s);
+        report.path.emplace_back(c.begin(), c.end());
+      }
+  };
+  if constexpr (requires { graph.unit_steps(r.path); })
+    take_path(graph.unit_steps(r.path));
+  else
+    take_path(r.path);
+}
+
+template <class MapPolicy, int W>
+void run_search(const GogField& field, const GridProblem& problem, const GridSearchOptions& o,
+                GridReport& report) {
+  if constexpr (W == 1) {
+    if (uses_jump_points(problem, o)) {
+      const GogCells2D cells(field);
+      const JumpPointGraph<GogCells2D> graph(cells, {report.goal[0], report.goal[1]});
+      report.pruning = "jump_points";
+      return search_into_report<MapPolicy, 1>(graph, problem, o, report);
+    }
+  }
+  const LatticeGraph<W> graph(field, problem.connectivity);
+  search_into_report<MapPolicy, W>(graph, problem, o, report);
 }
 
 }  // namespace detail
