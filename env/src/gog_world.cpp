@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/env/voxel_walk.hpp"
@@ -37,12 +38,13 @@ std::vector<int> gog_cell_of(const GogField& field, const double* x) {
   return cell;
 }
 
-GogSegmentWalk gog_walk_segment(const GogField& field, const double* a, const double* b) {
-  const int d = field.dims();
+namespace {
+
+template <class Dims>
+GogSegmentWalk walk_field(const GogField& field, Dims d, const double* a, const double* b) {
   const int threshold = field.threshold();
-  if (d > kGogMaxDims) throw RunError("GOG segment test: more than 16 dimensions");
   int extent[kGogMaxDims];
-  std::fill(extent, extent + d, field.extent());
+  std::fill(extent, extent + static_cast<int>(d), field.extent());
   const VoxelWalk w = voxel_walk(d, extent, a, b, [&](const int* c) {
     int sum = 0;
     for (int i = 0; i < d; ++i) sum += field.level_table(i)[c[i]];
@@ -53,6 +55,17 @@ GogSegmentWalk gog_walk_segment(const GogField& field, const double* a, const do
   walk.blocked_at = w.blocked_at;
   walk.cells = w.cells;
   return walk;
+}
+
+}  // namespace
+
+GogSegmentWalk gog_walk_segment(const GogField& field, const double* a, const double* b) {
+  const int d = field.dims();
+  if (d > kGogMaxDims) throw RunError("GOG segment test: more than 16 dimensions");
+  // The smoothing's dimensions (2D taut path, 3D tightener) walk with the dimension fixed.
+  if (d == 2) return walk_field(field, std::integral_constant<int, 2>{}, a, b);
+  if (d == 3) return walk_field(field, std::integral_constant<int, 3>{}, a, b);
+  return walk_field(field, d, a, b);
 }
 
 std::string gog_why_not_free(const GogField& field, const double* x) {

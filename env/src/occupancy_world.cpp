@@ -97,9 +97,10 @@ bool OccupancyWorld::segment_free(const Point& a, const Point& b) const {
     if (a[k] == domain_.hi[k]) ua[k] = n_[k];
     if (b[k] == domain_.hi[k]) ub[k] = n_[k];
   }
-  const VoxelWalk walk = voxel_walk(3, n_.data(), ua, ub, [&](const int* c) {
-    return occupied_[index({c[0], c[1], c[2]})] != 0;
-  });
+  const VoxelWalk walk =
+      voxel_walk(std::integral_constant<int, 3>{}, n_.data(), ua, ub, [&](const int* c) {
+        return occupied_[index({c[0], c[1], c[2]})] != 0;
+      });
   checks_.add(std::max<std::uint64_t>(1, walk.cells));
   return walk.free;
 }

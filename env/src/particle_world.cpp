@@ -133,7 +133,7 @@ long long ParticleWorld::ball_hit(const Point& a, const Point& b) const {
         }
     return false;
   };
-  voxel_walk(3, n_.data(), ua, ub, visit);
+  voxel_walk(std::integral_constant<int, 3>{}, n_.data(), ua, ub, visit);
   return hit;
 }
 

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 namespace hpcplan::env {
 
@@ -25,7 +26,8 @@ struct VoxelWalk {
 };
 
 // True when every coordinate of x lies in [0, extent[i]] (NaN is outside).
-inline bool in_voxel_grid(int d, const int* extent, const double* x) {
+template <class Dims>
+bool in_voxel_grid(Dims d, const int* extent, const double* x) {
   for (int i = 0; i < d; ++i)
     if (!(x[i] >= 0.0 && x[i] <= static_cast<double>(extent[i]))) return false;
   return true;
@@ -33,9 +35,11 @@ inline bool in_voxel_grid(int d, const int* extent, const double* x) {
 
 // The walk from a to b (both in cell units). A segment with an end outside the grid is blocked
 // at t = 0. `blocked(const int* cell)` sees only cells inside the grid. d <= kVoxelWalkMaxDims
-// (the caller checks).
-template <class Blocked>
-VoxelWalk voxel_walk(int d, const int* extent, const double* a, const double* b,
+// (the caller checks). `d` is an int, or a std::integral_constant for a dimension known at
+// compile time: then every per-axis loop unrolls (the 2D taut path, env/taut_path_2d.hpp,
+// took about 10% less).
+template <class Dims, class Blocked>
+VoxelWalk voxel_walk(Dims d, const int* extent, const double* a, const double* b,
                      Blocked&& blocked) {
   constexpr double kTie = 1e-12;  // crossings this close in t happen at once (edges, corners)
   VoxelWalk walk;
