@@ -115,7 +115,9 @@ BENCHMARK(BM_Query<search::StampedDensePolicy, false>)
 // split its time into the search and what is around it. range(1) = 0: Planner::solve with a
 // plain termination condition (the adapter's own cost: problem set-up, the path as OMPL
 // states); 1: Planner::solve(fn, 0.1), the call ompl::tools::Benchmark makes, which starts and
-// joins a thread that polls the condition, in every run and for every planner.
+// joins a thread that polls the condition, in every run and for every planner; 2: as 0 with the
+// default smoothing (`hpcplan ompl`'s gridastar), its quality (length over the straight line)
+// as a counter.
 void BM_OmplQuery(benchmark::State& state) {
   namespace ob = ompl::base;
   namespace og = ompl::geometric;
@@ -132,10 +134,11 @@ void BM_OmplQuery(benchmark::State& state) {
   setup.setStartAndGoalStates(start, goal, 1e-6);
   setup.setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(space.si));
   auto planner = std::make_shared<plan::GridAStarPlanner>(space);
-  planner->setShortcut(false);
+  const int mode = static_cast<int>(state.range(1));
+  planner->setShortcut(mode == 2);
   setup.setPlanner(planner);
   setup.setup();
-  const bool harness_call = state.range(1) != 0;
+  const bool harness_call = mode == 1;
   ob::Planner& base = *planner;  // the overload with a check interval lives on the base
   for (auto _ : state) {
     planner->clear();
@@ -145,11 +148,16 @@ void BM_OmplQuery(benchmark::State& state) {
                                          : planner->solve(ob::plannerNonTerminatingCondition());
     if (status != ob::PlannerStatus::EXACT_SOLUTION) state.SkipWithError("not solved");
   }
-  state.SetLabel(harness_call ? "solve(fn, 0.1) as ompl::tools::Benchmark" : "solve(ptc)");
+  state.SetLabel(harness_call ? "solve(fn, 0.1) as ompl::tools::Benchmark"
+                 : mode == 2  ? "solve(ptc), smoothed"
+                              : "solve(ptc)");
+  if (mode == 2)
+    state.counters["quality"] = setup.getProblemDefinition()->getSolutionPath()->length() /
+                                space.si->distance(start.get(), goal.get());
 }
 BENCHMARK(BM_OmplQuery)
     ->Name("OmplQuery")
-    ->ArgsProduct({{2}, {0, 1}})
+    ->ArgsProduct({{2}, {0, 1, 2}})
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 

@@ -13,7 +13,11 @@
 #include "hpcplan/core/memory.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/env/gog_world.hpp"
+#include "hpcplan/env/path_shortcut.hpp"
+#include "hpcplan/env/taut_path_2d.hpp"
 #include "hpcplan/sampling/path_tightening.hpp"
+#include "hpcplan/sampling/ptc_stop.hpp"
+#include "hpcplan/sampling/world_space.hpp"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -29,6 +33,39 @@ bool turns_at(const std::vector<std::vector<int>>& cells, std::size_t i) {
     if (cells[i][a] - cells[i - 1][a] != cells[i + 1][a] - cells[i][a]) return true;
   return false;
 }
+
+// A 2D field as the taut path's world: its exact segment test and its cells, counting the cells
+// read. One run, one thread.
+class FieldCells2D {
+ public:
+  static constexpr int kDim = 2;
+  explicit FieldCells2D(const GogField& field)
+      : field_(field),
+        x_(field.level_table(0)),
+        y_(field.level_table(1)),
+        extent_(field.extent()),
+        threshold_(field.threshold()) {}
+
+  bool segment_free(const env::Vec<2>& a, const env::Vec<2>& b) const {
+    const env::GogSegmentWalk walk = env::gog_walk_segment(field_, a.data(), b.data());
+    cells_ += walk.cells;
+    return walk.free;
+  }
+  // Cells outside the box are free, as in the walk: the box is convex, so no taut path rests
+  // on its walls.
+  bool blocked(int x, int y) const {
+    if (x < 0 || y < 0 || x >= extent_ || y >= extent_) return false;
+    return x_[x] + y_[y] >= threshold_;
+  }
+  std::uint64_t segment_cells() const { return cells_; }
+
+ private:
+  const GogField& field_;
+  const std::uint8_t* x_;
+  const std::uint8_t* y_;
+  int extent_, threshold_;
+  mutable std::uint64_t cells_ = 0;
+};
 
 }  // namespace
 
@@ -134,18 +171,23 @@ ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition&
   return ob::PlannerStatus::EXACT_SOLUTION;
 }
 
-// From 4D up, OMPL's randomised simplifier is the global step: its shortcuts between points
-// anywhere on two segments straighten a high-dimensional staircase better, per check, than any
-// vertex-to-vertex pass. It stops short of the taut path around obstacle corners, so the
-// tightener (string pulling, then rounds of sliding the bends) finishes. In 2D and 3D the
-// lattice path has few bends, string pulling already takes most of the gain, and the simplifier
-// only spent the budget the tightener could use: at 2D, with the budget at the search's time,
-// the tightener alone reached 1.145 against 1.187 with both; at 8D, 1.547 against 1.467.
+// In 2D the taut path has a closed form on the field's cells (pull_taut_2d). From 4D up, OMPL's
+// randomised simplifier is the global step: its shortcuts between points anywhere on two
+// segments straighten a high-dimensional staircase better, per check, than any vertex-to-vertex
+// pass. It stops short of the taut path around obstacle corners, so the tightener (string
+// pulling, then rounds of sliding the bends) finishes. In 3D the lattice path has few bends,
+// string pulling already takes most of the gain, and the simplifier only spent the budget the
+// tightener could use (at 2D, before the closed form, with the budget at the search's time,
+// the tightener alone reached 1.145 against 1.187 with both; at 8D, 1.547 against 1.467).
 // Both share one budget, a multiple of the search's own time, so the smoothed answer costs a
 // bounded factor of the lattice answer.
 void GridAStarPlanner::smooth(og::PathGeometric& path, const ob::PlannerTerminationCondition& ptc) {
   const double budget_s = smoothing_budget_ * last_.counters.time_ms / 1e3;
   const Stopwatch clock;
+  if (si_->getStateDimension() == 2) {
+    pull_taut_2d(path, ptc, budget_s);
+    return;
+  }
   const bool simplify = si_->getStateDimension() >= kSimplifierFromDims;
   if (simplify) {
     og::PathSimplifier simplifier(si_, pdef_->getGoal(), pdef_->getOptimizationObjective());
@@ -158,10 +200,9 @@ void GridAStarPlanner::smooth(og::PathGeometric& path, const ob::PlannerTerminat
       simplifier.simplify(path, ptc);
   }
   sampling::TighteningOptions tighten;
-  // Cell widths: enough vertices to wrap every corner. Without the simplifier first (below
-  // 4D) the string-pulled path is nearly taut, and longer pieces leave more rounds within the
-  // budget: at budget 1, 2D 1.137-1.145 -> 1.136 and 3D 1.118 -> 1.106 (9 runs each), with the
-  // converged length unchanged (1.128 / 1.129).
+  // Cell widths: enough vertices to wrap every corner. Without the simplifier first (3D) the
+  // string-pulled path is nearly taut, and longer pieces leave more rounds within the budget:
+  // at budget 1, 3D 1.118 -> 1.106 (9 runs), with the converged length unchanged.
   tighten.max_segment = simplify ? 2.0 : 8.0;
   tighten.pull_string = true;
   if (budget_s > 0) {
@@ -169,6 +210,32 @@ void GridAStarPlanner::smooth(og::PathGeometric& path, const ob::PlannerTerminat
     if (tighten.time_limit_s <= 0) return;
   }
   sampling::tighten_path(si_, path, ptc, tighten);
+}
+
+// In 2D the obstacles are the field's cells and the taut path has a closed form
+// (env/taut_path_2d.hpp): string pulling, then passes that wrap each bend's triangle, two
+// passes on the default problem. It reaches the exact shortest path of the lattice path's
+// class, where the sliding tightener was still converging at the budget (1.136 at budget 1,
+// 1.129 converged, against 1.125 exact).
+void GridAStarPlanner::pull_taut_2d(og::PathGeometric& path,
+                                    const ob::PlannerTerminationCondition& ptc, double budget_s) {
+  const FieldCells2D cells(*space_.field);
+  std::vector<env::Vec<2>> points;
+  for (const ob::State* s : path.getStates()) points.push_back(sampling::point_of<2>(s));
+  points = env::shortcut_path(cells, points);
+  env::TautOptions options;
+  options.stop = budget_s > 0 ? Stop::after(budget_s) : Stop();
+  options.stop.also_when([&ptc] { return ptc(); });
+  const env::TautStats stats = env::taut_path_2d(
+      cells, [&cells](int x, int y) { return cells.blocked(x, y); }, points, options);
+  space_.checks->add(cells.segment_cells() + stats.cells_read);
+  auto& states = path.getStates();
+  while (states.size() > points.size()) {
+    si_->freeState(states.back());
+    states.pop_back();
+  }
+  while (states.size() < points.size()) states.push_back(si_->allocState());
+  for (std::size_t i = 0; i < points.size(); ++i) sampling::set_state<2>(states[i], points[i]);
 }
 
 void GridAStarPlanner::getPlannerData(ob::PlannerData& data) const {

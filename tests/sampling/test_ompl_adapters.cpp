@@ -26,6 +26,7 @@
 #include "hpcplan/sampling/gog_space.hpp"
 #include "hpcplan/sampling/path_tightening.hpp"
 #include "hpcplan/sampling/world_ompl.hpp"
+#include "support/shortest_path_2d.hpp"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -259,11 +260,7 @@ TEST(PathTightening, ShortensALatticePathAndKeepsItValid) {
     EXPECT_TRUE(w.si->checkMotion(path.getState(i - 1), path.getState(i))) << "segment " << i;
 }
 
-// The exact shortest path in a 2D GOG world, an oracle for the smoothing. A taut path bends
-// only at convex obstacle corners: lattice points with exactly one blocked cell among their
-// four. The world's cells are closed, so a path only comes arbitrarily close to a corner; each
-// corner vertex sits `eps` inside the free cell diagonally opposite the blocked one. Dijkstra on
-// the visibility graph of those points and the two ends, every edge tested with the exact walk.
+// The exact shortest path in a 2D GOG world (tests/support/shortest_path_2d.hpp).
 double shortest_length_2d(const GogField& field, const env::Vec<2>& s, const env::Vec<2>& g,
                           double eps) {
   const env::GogWorld<2> world(std::make_shared<const GogField>(field));
@@ -271,42 +268,17 @@ double shortest_length_2d(const GogField& field, const env::Vec<2>& s, const env
   const auto blocked = [&](int x, int y) {
     return x >= 0 && y >= 0 && x < n && y < n && !field.is_free(std::vector<int>{x, y});
   };
-  std::vector<env::Vec<2>> v{s, g};
-  for (int x = 1; x < n; ++x)
-    for (int y = 1; y < n; ++y) {
-      // The four cells around lattice point (x, y): (x-1+i, y-1+j).
-      int count = 0, bi = 0, bj = 0;
-      for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j)
-          if (blocked(x - 1 + i, y - 1 + j)) ++count, bi = i, bj = j;
-      if (count == 1) v.push_back({x + (bi ? -eps : eps), y + (bj ? -eps : eps)});
-    }
-  std::vector<double> dist(v.size(), std::numeric_limits<double>::infinity());
-  std::vector<bool> done(v.size(), false);
-  dist[0] = 0;
-  for (;;) {
-    std::size_t u = v.size();
-    for (std::size_t i = 0; i < v.size(); ++i)
-      if (!done[i] && (u == v.size() || dist[i] < dist[u])) u = i;
-    if (u == v.size() || std::isinf(dist[u])) return dist[1];
-    if (u == 1) return dist[1];
-    done[u] = true;
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      if (done[i]) continue;
-      const double through = dist[u] + env::distance<2>(v[u], v[i]);
-      if (through < dist[i] && world.segment_free(v[u], v[i])) dist[i] = through;
-    }
-  }
+  return test_support::shortest_length_2d(world, blocked, n, s, g, eps);
 }
 
 // The smoothing against that oracle, on fields of three seeds and two sizes: never shorter than
-// the shortest path (it would have cut an obstacle); within 2% of it run to convergence. The
-// tightener is local, and OMPL's randomised shortcuts pick the way round each obstacle, so a
-// path can settle on a slightly longer way and the figures vary from run to run: 0.1-1.2%
-// converged in three runs when this test was written. On the default budget (the search's own
-// time again) the quality reached depends on the machine's speed, so it is a benchmark figure
-// (docs/PERFORMANCE.md), and this test asks only that the budgeted smoothing is valid and no
-// longer than the lattice path it started from (0.2-6% above the oracle here).
+// the shortest path (it would have cut an obstacle). Run to convergence it is the taut path of
+// the lattice path's class (env/taut_path_2d.hpp), which is the shortest overall on five of
+// these six fields and 0.55% above it on the sixth (extent 100, seed 1), where the lattice
+// path goes round an obstacle the other way; 1% allows for that and nothing more. On the
+// default budget (the search's own time again) how far the passes get depends on the machine's
+// speed, so that figure is a benchmark's (docs/PERFORMANCE.md), and this test asks only that
+// the budgeted smoothing is valid and no longer than the lattice path it started from.
 TEST(GridPlannerInOmpl, SmoothedPathIsNearTheExactShortestPathIn2D) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   const auto point = [](const ob::State* st) {
@@ -327,7 +299,7 @@ TEST(GridPlannerInOmpl, SmoothedPathIsNearTheExactShortestPathIn2D) {
         EXPECT_TRUE(p->check());
         EXPECT_GE(p->length(), oracle - 1e-4);  // eps per corner at most
       }
-      EXPECT_LE(converged.length(), 1.02 * oracle) << "extent " << extent << " seed " << seed;
+      EXPECT_LE(converged.length(), 1.01 * oracle) << "extent " << extent << " seed " << seed;
       EXPECT_LE(budgeted.length(), lattice.length() + 1e-9)
           << "extent " << extent << " seed " << seed;
       EXPECT_LT(converged.length(), lattice.length()) << "extent " << extent << " seed " << seed;

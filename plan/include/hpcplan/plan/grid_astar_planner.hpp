@@ -4,11 +4,13 @@
 //  - the start and goal states are mapped to their lattice cells, solve_grid() searches the
 //    seed-002 lattice, and the lattice path becomes continuous cell centres with the exact
 //    start and goal states at its ends (a segment inside one cell is always valid);
-//  - with `shortcut` on, the path is then shortened in continuous space with the space
-//    information's own motion validator (from 4D up OMPL's PathSimplifier, then hpcplan's
-//    tightener; in 2D and 3D the tightener alone),
-//    which takes grid paths below the lattice's quality limit (sqrt(d/2) in open space), within
-//    a budget of `smoothing_budget` times the search's own time;
+//  - with `shortcut` on, the path is then shortened in continuous space, within a budget of
+//    `smoothing_budget` times the search's own time, below the lattice's quality limit
+//    (sqrt(d/2) in open space): in 2D to the exact taut path of its homotopy class on the
+//    field's cells (env/taut_path_2d.hpp, every segment through the field's exact walk, which
+//    is at least as strict as any motion validator the space has); in 3D with hpcplan's
+//    tightener and from 4D up with OMPL's PathSimplifier then the tightener, both through the
+//    space information's own motion validator;
 //  - the lattice's collision checks are added to the world's counter, so checks are counted
 //    by one object for every planner.
 // Parameters (declared, so Benchmark logs them): weight (1 = A*), heuristic (lattice |
@@ -55,6 +57,8 @@ class GridAStarPlanner : public ompl::base::Planner {
  private:
   void smooth(ompl::geometric::PathGeometric& path,
               const ompl::base::PlannerTerminationCondition& ptc);
+  void pull_taut_2d(ompl::geometric::PathGeometric& path,
+                    const ompl::base::PlannerTerminationCondition& ptc, double budget_s);
 
   sampling::GogSpace space_;
   Connectivity connectivity_;
