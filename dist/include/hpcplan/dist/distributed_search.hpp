@@ -214,17 +214,19 @@ class DistributedSearch {
     std::uint64_t generated = 0;
     bool stop = false;
     const auto x_cell = cell_of(x);
-    graph_.for_each_successor(x, [&](const State& t, const Cost& cost, Move m) {
-      ++generated;
-      if (stop) return;
-      const Cost gt = gx + cost;
-      // x is owned here, so a neighbour in x's ownership cell is too: no hash needed.
-      const int o = same_cell(x_cell, t) ? rank_ : owner_(t);
-      if (o == rank_)
-        stop = !accept(t, gt, m);
-      else if (sent_.admit(t, cost_value(gt)))
-        route(o, Record{t, gt, m});
-    });
+    // (Forced inline, as the serial engine's: GCC kept it a call per successor.)
+    graph_.for_each_successor(
+        x, [&](const State& t, const Cost& cost, Move m) __attribute__((always_inline)) {
+          ++generated;
+          if (stop) return;
+          const Cost gt = gx + cost;
+          // x is owned here, so a neighbour in x's ownership cell is too: no hash needed.
+          const int o = same_cell(x_cell, t) ? rank_ : owner_(t);
+          if (o == rank_)
+            stop = !accept(t, gt, m);
+          else if (sent_.admit(t, cost_value(gt)))
+            route(o, Record{t, gt, m});
+        });
     generated_ += generated;
   }
 
