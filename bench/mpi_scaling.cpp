@@ -2,8 +2,8 @@
 // For one problem it times, in `--repeats` rounds, each round
 //   - the serial engine on rank 0 alone (the other ranks sleep in a barrier), unless
 //     --no-serial, then
-//   - the distributed engine once for every combination of --modes, --batches, --coarsen and
-//     --sent-filters;
+//   - the distributed engine once for every combination of --modes, --batches, --slabs,
+//     --coarsen and --sent-filters (a slab ownership, width > 0, runs with no coarsening);
 //   - with --ceiling, the serial search on every rank at once (scheme "ceiling": the speedup
 //     the machine itself allows P copies of this memory-bound work).
 // Interleaving matters on a noisy machine: the speed of a shared VM drifts by 10-25% over a
@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> modes{"async"};
   std::vector<std::size_t> batches{512};
   std::vector<int> coarsen{0};
+  std::vector<int> slabs{0};
   std::vector<int> filters{dist::DistGridOptions{}.sent_filter_log2};
   int repeats = 3;
   bool no_serial = false;
@@ -74,6 +75,10 @@ int main(int argc, char** argv) {
   app.add_option("--modes", modes)->delimiter(',');
   app.add_option("--batches", batches)->delimiter(',');
   app.add_option("--coarsen", coarsen)->delimiter(',');
+  app.add_option("--slabs", slabs,
+                 "Slab widths along the first axis (0 = hash ownership); each runs with "
+                 "coarsening 0")
+      ->delimiter(',');
   app.add_option("--sent-filters", filters, "log2 slots of the sent-duplicate filter")
       ->delimiter(',');
   app.add_option("--repeats", repeats)->check(CLI::Range(1, 100));
@@ -93,16 +98,19 @@ int main(int argc, char** argv) {
     std::vector<dist::DistGridOptions> configs;
     for (const auto& mode : modes)
       for (std::size_t batch : batches)
-        for (int k : coarsen)
-          for (int f : filters) {
-            dist::DistGridOptions d;
-            d.scheme = dist::parse_scheme(mode);
-            d.batch = batch;
-            d.coarsen_shift = k;
-            d.sent_filter_log2 = f;
-            dist::validate(d);
-            configs.push_back(d);
-          }
+        for (int w : slabs)
+          for (int k : coarsen)
+            for (int f : filters) {
+              if (w > 0 && k > 0) continue;  // slabs replace the hash and its coarsening
+              dist::DistGridOptions d;
+              d.scheme = dist::parse_scheme(mode);
+              d.batch = batch;
+              d.coarsen_shift = k;
+              d.slab_width = w;
+              d.sent_filter_log2 = f;
+              dist::validate(d);
+              configs.push_back(d);
+            }
     std::vector<double> serial_t;
     std::vector<std::vector<double>> dist_t(configs.size()), ratio(configs.size()),
         of_ceiling(configs.size());
@@ -166,19 +174,20 @@ int main(int argc, char** argv) {
       const double ex = static_cast<double>(std::max<std::uint64_t>(1, g.counters.expanded));
       const double speedup = no_serial ? 0.0 : median(ratio[c]);
       char line[1024];
-      std::snprintf(
-          line, sizeof line,
-          "%s,%d,%d,%d,%.2f,%s,%s,%zu,%d,%d,%d,%s,%.6f,%llu,%llu,%.3f,%.3f,%.3f,%.3f,"
-          "%.3f,%.5f,%.2f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
-          label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
-          g.scheme.c_str(), configs[c].batch, configs[c].coarsen_shift, configs[c].sent_filter_log2,
-          repeats, std::string(search::to_string(g.status)).c_str(), g.cost,
-          static_cast<unsigned long long>(g.counters.expanded),
-          static_cast<unsigned long long>(serial_expanded), serial_ms, med,
-          no_serial ? 0.0 : serial_ms / med, speedup, speedup / comm.size(), messages / ex,
-          bytes / ex, workload_deviation_percent(g.per_rank),
-          serial_expanded ? ex / static_cast<double>(serial_expanded) : 0.0, lowest(ratio[c]),
-          highest(ratio[c]), median(of_ceiling[c]), lowest(of_ceiling[c]), highest(of_ceiling[c]));
+      std::snprintf(line, sizeof line,
+                    "%s,%d,%d,%d,%.2f,%s,%s,%zu,%d,%d,%d,%s,%.6f,%llu,%llu,%.3f,%.3f,%.3f,%.3f,"
+                    "%.3f,%.5f,%.2f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d\n",
+                    label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
+                    g.scheme.c_str(), configs[c].batch, configs[c].coarsen_shift,
+                    configs[c].sent_filter_log2, repeats,
+                    std::string(search::to_string(g.status)).c_str(), g.cost,
+                    static_cast<unsigned long long>(g.counters.expanded),
+                    static_cast<unsigned long long>(serial_expanded), serial_ms, med,
+                    no_serial ? 0.0 : serial_ms / med, speedup, speedup / comm.size(),
+                    messages / ex, bytes / ex, workload_deviation_percent(g.per_rank),
+                    serial_expanded ? ex / static_cast<double>(serial_expanded) : 0.0,
+                    lowest(ratio[c]), highest(ratio[c]), median(of_ceiling[c]),
+                    lowest(of_ceiling[c]), highest(of_ceiling[c]), configs[c].slab_width);
       rows << line;
       std::fputs(line, stderr);
     }
@@ -186,7 +195,7 @@ int main(int argc, char** argv) {
       char line[512];
       std::snprintf(line, sizeof line,
                     "%s,%d,%d,%d,%.2f,%s,ceiling,0,0,0,%d,solved,%.6f,%llu,%llu,%.3f,%.3f,%.3f,"
-                    "%.3f,%.3f,0,0,0,1,%.3f,%.3f,1,1,1\n",
+                    "%.3f,%.3f,0,0,0,1,%.3f,%.3f,1,1,1,0\n",
                     label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
                     repeats, serial_cost, static_cast<unsigned long long>(serial_expanded),
                     static_cast<unsigned long long>(serial_expanded), serial_ms,
@@ -202,7 +211,8 @@ int main(int argc, char** argv) {
           "cost,expanded,serial_expanded,serial_median_ms,median_ms,ratio_of_medians,"
           "speedup_vs_serial,efficiency,"
           "messages_per_expansion,bytes_per_expansion,workload_deviation_percent,"
-          "search_overhead,speedup_min,speedup_max,of_ceiling,of_ceiling_min,of_ceiling_max\n";
+          "search_overhead,speedup_min,speedup_max,of_ceiling,of_ceiling_min,of_ceiling_max,"
+          "slabs\n";
       if (csv.empty()) {
         std::fputs(header, stdout);
         std::fputs(rows.str().c_str(), stdout);

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Strong scaling on this machine: P = 1 and P = 2 for one problem per dimension (d = 4, 6, 8,
-# 10; Dijkstra, sized to take >= 2 s on one rank), state-hash and coarse-cell ownership,
+# 10; Dijkstra, sized to take >= 2 s on one rank), state-hash, coarse-cell and slab ownership,
 # asynchronous vs bulk-synchronous, the machine's own ceiling (the serial search on both cores
 # at once), and the effect of the batch size at 6D. Every row is timed against the serial
 # engine in the same mpirun job, interleaved round by round (median of --repeats ratios, with
@@ -16,14 +16,17 @@ if [[ $(id -u) -eq 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_
 mkdir -p results
 csv=results/strong_scaling.csv.tmp
 rm -f "$csv"
-# "dims extent coarsening-shifts": k = 2 leaves too few cells at extent 4 (one per axis).
-problems=("4 40 0,1,2" "6 11 0,1,2" "8 6 0,1,2" "10 4 0,1")
+# "dims extent coarsening-shifts slab-widths": k = 2 leaves too few cells at extent 4 (one per
+# axis); slabs of half the extent (two contiguous halves) and of about a quarter (dealt
+# alternately, for balance), 0 = the hash.
+problems=("4 40 0,1,2 0,20,10" "6 11 0,1,2 0,6,3" "8 6 0,1,2 0,3,2" "10 4 0,1 0,2,1")
 for pr in "${problems[@]}"; do
   set -- $pr
   mpirun -np 1 "$bin" --dims "$1" --extent "$2" --algo dijkstra --repeats "$repeats" \
     --label "d$1" --csv "$csv" 2>/dev/null
   mpirun -np 2 "$bin" --dims "$1" --extent "$2" --algo dijkstra --repeats "$repeats" \
-    --modes async,bulk --coarsen "$3" --ceiling --label "d$1" --csv "$csv" 2>/dev/null
+    --modes async,bulk --coarsen "$3" --slabs "$4" --ceiling --label "d$1" --csv "$csv" \
+    2>/dev/null
 done
 # Batch size (async) at 6D.
 mpirun -np 2 "$bin" --dims 6 --extent 11 --algo dijkstra --repeats "$repeats" --modes async \

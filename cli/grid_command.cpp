@@ -75,6 +75,12 @@ Action register_grid_command(CLI::App& app) {
              "Ownership hashes each coordinate >> k, keeping 2^k-wide cells on one rank", 0, 16)
       ->capture_default_str()
       ->group(mpi);
+  add_number(cmd, "--owner-slabs", d.slab_width,
+             "Ownership by slabs this wide along the first axis, dealt round the ranks, instead "
+             "of the hash (0 = hash)",
+             0, 1 << 30)
+      ->capture_default_str()
+      ->group(mpi);
   add_number(cmd, "--batch", d.batch, "Async: records per message", 1, 1048576)
       ->capture_default_str()
       ->group(mpi);
@@ -118,7 +124,7 @@ Action register_grid_command(CLI::App& app) {
     if (!a.goal.empty()) a.problem.goal = parse_coordinates(a.goal, "--goal");
 
     a.dist.scheme = dist::parse_scheme(a.mode);
-    dist::validate(a.dist);
+    dist::validate(a.dist, a.problem.extent);
     if (!a.output.empty()) require_writable_destination(a.output, "--output");
 
     if (!a.simulate_ranks.empty()) {

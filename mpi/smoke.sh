@@ -19,6 +19,7 @@ cases=(
   "--dims 3 --algo bfs --extent 40"
   "--dims 6 --algo astar --mode bulk"
   "--dims 5 --algo dijkstra --extent 10 --owner-coarsen 1"
+  "--dims 5 --algo astar --extent 10 --owner-slabs 3"
 )
 failures=0
 for c in "${cases[@]}"; do
@@ -34,6 +35,9 @@ if s["algo"] == "bfs":
     ok = ok and s["hops"] == d["hops"]
 else:
     ok = ok and abs(s["cost"] - d["cost"]) <= 1e-9 * (1 + s["cost"])
+if "--owner-slabs" in case:  # the report names the ownership that ran
+    width = int(case.split("--owner-slabs")[1].split()[0])
+    ok = ok and d["distributed"]["ownership"] == {"slabs": {"axis": 0, "width": width}}
 print(f"smoke: {'ok  ' if ok else 'FAIL'} {case:50s} serial cost {s['cost']:.4f} hops {s['hops']}"
       f" | 2 ranks ({d['scheme']}) cost {d['cost']:.4f} hops {d['hops']},"
       f" deviation {d['distributed']['workload_deviation_percent']:.2f}%")

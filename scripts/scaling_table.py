@@ -8,8 +8,8 @@ cols = ["label", "ranks", "dims", "extent", "scheme", "batch", "coarsen", "sent_
         "serial_median_ms", "median_ms", "ratio_of_medians", "speedup_vs_serial", "efficiency",
         "messages_per_expansion", "bytes_per_expansion", "workload_deviation_percent",
         "search_overhead", "speedup_min", "speedup_max", "of_ceiling", "of_ceiling_min",
-        "of_ceiling_max"]
-# Older CSVs lack the spread columns.
+        "of_ceiling_max", "slabs"]
+# Older CSVs lack the spread and slab columns.
 cols = [c for c in cols if all(c in r for r in rows)]
 print("| " + " | ".join(cols) + " |")
 print("|" + "---|" * len(cols))
@@ -33,7 +33,8 @@ if best:
     for key, r in best.items():
         c = ceilings.get(key)
         cell = f"{c['speedup_vs_serial']} ({c['speedup_min']}-{c['speedup_max']})" if c else "-"
-        print(f"| {key[0]} | {key[1]} | {r['scheme']} k={r['coarsen']} batch={r['batch']} | "
+        owner = f"slabs={r['slabs']}" if r.get("slabs", "0") not in ("", "0") else f"k={r['coarsen']}"
+        print(f"| {key[0]} | {key[1]} | {r['scheme']} {owner} batch={r['batch']} | "
               f"{r['speedup_vs_serial']} ({r['speedup_min']}-{r['speedup_max']}) | {cell} | "
               f"{float(r['of_ceiling']):.1%} ({float(r['of_ceiling_min']):.1%}-"
               f"{float(r['of_ceiling_max']):.1%}) |")

@@ -29,9 +29,17 @@ std::string_view to_string(Scheme s) {
   return "unknown";
 }
 
-void validate(const DistGridOptions& o) {
+void validate(const DistGridOptions& o, int extent) {
   if (o.coarsen_shift < 0 || o.coarsen_shift > 16)
     throw InputError("--owner-coarsen must be in 0..16, got " + std::to_string(o.coarsen_shift));
+  if (o.slab_width < 0)
+    throw InputError("--owner-slabs must be 0 (hash) or a width, got " +
+                     std::to_string(o.slab_width));
+  if (o.slab_width > 0 && o.coarsen_shift > 0)
+    throw InputError("--owner-slabs and --owner-coarsen choose different ownerships: give one");
+  if (extent > 0 && o.slab_width > extent)
+    throw InputError("--owner-slabs " + std::to_string(o.slab_width) +
+                     " is wider than the extent " + std::to_string(extent));
   if (o.batch < 1 || o.batch > (1u << 20))
     throw InputError("--batch must be in 1..1048576 records, got " + std::to_string(o.batch));
   if (!(o.batch_age_ms >= 0.0) || o.batch_age_ms > 1000.0)
@@ -71,7 +79,8 @@ void run_distributed(const GogField& field, const GridProblem& problem, const Gr
   d.sync_every = dist.sync_every;
   d.sent_filter_log2 = dist.sent_filter_log2;
   d.yield_when_idle = comm.ranks_on_node() > static_cast<int>(std::thread::hardware_concurrency());
-  const partition::Ownership<W> owner(graph.layout(), p, dist.coarsen_shift);
+  const partition::Ownership<W> owner(graph.layout(), p, dist.coarsen_shift, dist.slab_width,
+                                      problem.extent);
 
   auto search = [&](const auto& h) {
     using H = std::remove_cvref_t<decltype(h)>;
@@ -102,13 +111,14 @@ void run_distributed(const GogField& field, const GridProblem& problem, const Gr
 GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOptions& options,
                                   const DistGridOptions& dist, const mpi::Communicator& comm) {
   hpcplan::validate(problem, options);
-  validate(dist);
+  validate(dist, problem.extent);
   Stopwatch setup;
   const GogField field(problem.dims, problem.extent, problem.gog);
   GridReport report = prepare_grid_report(problem, options, field, comm.ranks_on_node());
   report.setup_ms = setup.milliseconds();
   report.ranks = comm.size();
   report.coarsen_shift = dist.coarsen_shift;
+  report.slab_width = dist.slab_width;
   report.batch = dist.batch;
   report.batch_age_ms = dist.batch_age_ms;
   report.sync_every = dist.sync_every;

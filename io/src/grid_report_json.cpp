@@ -11,7 +11,10 @@ namespace {
 
 nlohmann::json distributed_json(const GridReport& r) {
   nlohmann::json d;
-  d["ownership"] = {{"hash", "splitmix64"}, {"coarsen_shift", r.coarsen_shift}};
+  if (r.slab_width > 0)
+    d["ownership"] = {{"slabs", {{"axis", 0}, {"width", r.slab_width}}}};
+  else
+    d["ownership"] = {{"hash", "splitmix64"}, {"coarsen_shift", r.coarsen_shift}};
   d["batch"] = r.batch;
   d["batch_age_ms"] = r.batch_age_ms;
   d["sync_every"] = r.sync_every;
@@ -152,12 +155,16 @@ std::string to_summary(const GridReport& r) {
       messages += k.messages_sent;
       bytes += k.bytes_sent;
     }
+    char owner[48];
+    if (r.slab_width > 0)
+      std::snprintf(owner, sizeof owner, "owner slabs of %d", r.slab_width);
+    else
+      std::snprintf(owner, sizeof owner, "owner coarsen %d", r.coarsen_shift);
     std::snprintf(line, sizeof line,
-                  "  ranks      %d (%s, owner coarsen %d): workload deviation %.2f%%, %llu "
+                  "  ranks      %d (%s, %s): workload deviation %.2f%%, %llu "
                   "messages, %.1f MB sent\n",
-                  r.ranks, r.scheme.c_str(), r.coarsen_shift,
-                  workload_deviation_percent(r.per_rank), static_cast<unsigned long long>(messages),
-                  bytes / 1e6);
+                  r.ranks, r.scheme.c_str(), owner, workload_deviation_percent(r.per_rank),
+                  static_cast<unsigned long long>(messages), bytes / 1e6);
     o << line;
   }
   if (r.has_serial_reference) {

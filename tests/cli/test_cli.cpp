@@ -167,6 +167,8 @@ TEST(Cli, BadInputExitsTwoWithOneLine) {
   expect_bad_input("", "subcommand");
   expect_bad_input("grid --dims 2 --simulate-ranks 0", "--simulate-ranks");
   expect_bad_input("grid --dims 2 --simulate-ranks 2 --simulate-coarsen 17", "--simulate-coarsen");
+  expect_bad_input("grid --dims 2 --owner-slabs 2 --owner-coarsen 1", "--owner-slabs");
+  expect_bad_input("grid --dims 2 --extent 50 --owner-slabs 51", "wider than the extent");
 }
 
 // The rank simulator's report: shares per split are consistent with the observed search.
@@ -243,6 +245,7 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
       {"grid --dims 2", "--gog-shift-p", "64"},
       {"grid --dims 2", "--gog-shift-v", "62"},
       {"grid --dims 2", "--owner-coarsen", "17"},
+      {"grid --dims 2", "--owner-slabs", "1073741825"},
       {"grid --dims 2", "--batch", "1048577"},
       {"grid --dims 2", "--batch-age-ms", "1001"},
       {"grid --dims 2", "--sync-every", "1e19"},
@@ -295,7 +298,7 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
       ++tried;
     }
   }
-  EXPECT_EQ(tried, 51 * 10 + 51);
+  EXPECT_EQ(tried, 52 * 10 + 52);
 }
 
 }  // namespace

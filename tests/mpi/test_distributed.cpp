@@ -67,15 +67,26 @@ struct Config {
   const char* algo;
   dist::Scheme scheme;
   int coarsen;
+  int slabs = 0;  // slab width; 0 = hash ownership
 };
 
 TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
   const Config configs[] = {
-      {"astar", dist::Scheme::async, 0},        {"astar", dist::Scheme::bulk_sync, 0},
-      {"astar", dist::Scheme::async, 1},        {"dijkstra", dist::Scheme::async, 0},
-      {"dijkstra", dist::Scheme::bulk_sync, 1}, {"wastar", dist::Scheme::async, 0},
-      {"wastar", dist::Scheme::bulk_sync, 0},   {"bfs", dist::Scheme::level_sync, 0},
+      {"astar", dist::Scheme::async, 0},
+      {"astar", dist::Scheme::bulk_sync, 0},
+      {"astar", dist::Scheme::async, 1},
+      {"dijkstra", dist::Scheme::async, 0},
+      {"dijkstra", dist::Scheme::bulk_sync, 1},
+      {"wastar", dist::Scheme::async, 0},
+      {"wastar", dist::Scheme::bulk_sync, 0},
+      {"bfs", dist::Scheme::level_sync, 0},
       {"bfs", dist::Scheme::level_sync, 1},
+      // Slabs of width 1 (every layer changes owner: most traffic) and 2 (dealt round the
+      // ranks, so at 8 ranks some own nothing on the smaller extents).
+      {"astar", dist::Scheme::async, 0, 2},
+      {"dijkstra", dist::Scheme::bulk_sync, 0, 1},
+      {"wastar", dist::Scheme::async, 0, 1},
+      {"bfs", dist::Scheme::level_sync, 0, 2},
   };
   SplitMix64 rng(2026);
   int solved = 0, compared = 0;
@@ -95,6 +106,7 @@ TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
         dist::DistGridOptions dopt;
         dopt.scheme = c.scheme == dist::Scheme::level_sync ? dist::Scheme::async : c.scheme;
         dopt.coarsen_shift = c.coarsen;
+        dopt.slab_width = c.slabs;
         dopt.batch = 1 + rng.next_below(64);  // small batches: many messages in flight
         const GridReport r = dist::solve_grid_distributed(p, o, dopt, *g_comm);
         if (!root()) continue;
@@ -106,7 +118,8 @@ TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
         const GridReport s = solve_grid(p, so);  // the optimum (or fewest hops for BFS)
         SCOPED_TRACE(::testing::Message()
                      << "d=" << d << " seed=" << p.gog.seed << " algo=" << c.algo
-                     << " scheme=" << r.scheme << " coarsen=" << c.coarsen << " ranks=" << r.ranks);
+                     << " scheme=" << r.scheme << " coarsen=" << c.coarsen << " slabs=" << c.slabs
+                     << " ranks=" << r.ranks);
         ++compared;
         EXPECT_EQ(r.status, s.status);
         if (r.status != search::Status::solved || s.status != search::Status::solved) continue;
@@ -270,6 +283,33 @@ TEST(Ownership, SpreadsStatesEvenlyAndCoarseningKeepsCellsTogether) {
   EXPECT_EQ(one(layout.pack<1>(std::vector<int>{5, 6, 7})), 0);
 }
 
+// Slabs: the owner depends on the first coordinate alone, (x / w) mod P, on every key width.
+template <int W>
+void expect_slab_owners(int dims, int extent) {
+  const KeyLayout layout(dims, extent);
+  ASSERT_EQ(layout.words(), W);
+  SplitMix64 rng(7);
+  for (const int ranks : {2, 3, 8})
+    for (const int width : {1, 3, extent}) {
+      const partition::Ownership<W> slabs(layout, ranks, 0, width, extent);
+      EXPECT_EQ(slabs.slab_width(), width);
+      for (int i = 0; i < 2000; ++i) {
+        std::vector<int> c(dims);
+        for (int& x : c) x = static_cast<int>(rng.next_below(extent));
+        ASSERT_EQ(slabs(layout.pack<W>(c)), (c[0] / width) % ranks)
+            << "dims " << dims << " ranks " << ranks << " width " << width;
+      }
+    }
+}
+
+TEST(Ownership, SlabsFollowTheFirstCoordinate) {
+  expect_slab_owners<1>(6, 11);
+  expect_slab_owners<2>(10, 1000);  // 10 bits per axis: two words
+  // A coarsening shift given with slabs is ignored, not mixed in.
+  const KeyLayout layout(3, 16);
+  EXPECT_EQ(partition::Ownership<1>(layout, 2, 2, 4, 16).coarsen_shift(), 0);
+}
+
 TEST(DistributedOptions, ImpossibleValuesAreInputErrors) {
   dist::DistGridOptions d;
   d.batch = 0;
@@ -280,6 +320,20 @@ TEST(DistributedOptions, ImpossibleValuesAreInputErrors) {
   d = {};
   d.sync_every = 0;
   EXPECT_THROW(dist::validate(d), InputError);
+  d = {};
+  d.slab_width = -1;
+  EXPECT_THROW(dist::validate(d), InputError);
+  d.slab_width = 2;
+  d.coarsen_shift = 1;  // two ownerships at once
+  EXPECT_THROW(dist::validate(d), InputError);
+  d.coarsen_shift = 0;
+  EXPECT_NO_THROW(dist::validate(d));
+  // Wider than the lattice: refused before any rank starts searching.
+  GridProblem p;
+  p.dims = 2;
+  p.extent = 8;
+  d.slab_width = 9;
+  EXPECT_THROW(dist::solve_grid_distributed(p, GridSearchOptions{}, d, *g_comm), InputError);
   EXPECT_THROW(dist::parse_scheme("sometimes"), InputError);
 }
 

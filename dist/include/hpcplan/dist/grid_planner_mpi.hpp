@@ -12,6 +12,7 @@ struct DistGridOptions {
   // async or bulk_sync for A*, weighted A* and Dijkstra; BFS is always level_sync.
   Scheme scheme = Scheme::async;
   int coarsen_shift = 0;  // ownership hashes coordinates >> k (0 = the state itself)
+  int slab_width = 0;     // > 0: ownership by slabs of this width along the first axis instead
   std::size_t batch = 512;
   double batch_age_ms = 0.5;
   std::uint64_t sync_every = 4096;
@@ -22,8 +23,9 @@ struct DistGridOptions {
 Scheme parse_scheme(std::string_view name);  // InputError if unknown
 std::string_view to_string(Scheme s);
 
-// InputError for impossible distributed options.
-void validate(const DistGridOptions& options);
+// InputError for impossible distributed options; with the lattice's extent, also for slabs
+// wider than it.
+void validate(const DistGridOptions& options, int extent = 0);
 
 GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOptions& options,
                                   const DistGridOptions& dist, const mpi::Communicator& comm);
