@@ -7,11 +7,14 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <stop_token>
+#include <string>
 #include <vector>
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/env/gog_world.hpp"
 #include "hpcplan/env/path_shortcut.hpp"
+#include "hpcplan/plan/grid_planner.hpp"
 #include "hpcplan/plan/grid_problem.hpp"
 #include "hpcplan/tree/rrt_connect.hpp"
 #include "hpcplan/tree/rrt_star.hpp"
@@ -162,6 +165,67 @@ TEST(GogWorld, TreePlannersAndTheTightenerReturnValidPaths) {
   ASSERT_EQ(b.status, Status::solved);
   test_support::expect_valid(w, b.path, start, goal, "gog rrtstar");
   EXPECT_GT(w.collision_checks(), 0u);
+}
+
+// A GOG world whose segment tests trigger a stop after a set number: the tightener is then
+// interrupted wherever that falls, mid-pass included.
+struct StoppingWorld {
+  static constexpr int kDim = 4;
+  const GogWorld<4>& world;
+  std::stop_source& source;
+  mutable long left;  // worlds are const to their users; this one counts down regardless
+  bool point_free(const Vec<4>& p) const { return world.point_free(p); }
+  bool segment_free(const Vec<4>& a, const Vec<4>& b) const {
+    if (--left == 0) source.request_stop();
+    return world.segment_free(a, b);
+  }
+};
+
+// Stopped anywhere, the tightener leaves a valid path no longer than it was, and the points a
+// stopped pass put in and did not move go again.
+TEST(GogWorld, TheTightenerStoppedMidPassLeavesAValidLeanPath) {
+  const auto field = field_for(4, 20, 3);
+  const GogWorld<4> w(field);
+  const auto s = adjust_to_free(*field, {0, 0, 0, 0}, +1, "start");
+  const auto g = adjust_to_free(*field, {19, 19, 19, 19}, -1, "goal");
+  const Vec<4> start{s[0] + 0.5, s[1] + 0.5, s[2] + 0.5, s[3] + 0.5};
+  const Vec<4> goal{g[0] + 0.5, g[1] + 0.5, g[2] + 0.5, g[3] + 0.5};
+  // The lattice path itself: many bends, all with slack.
+  GridProblem problem;
+  problem.dims = 4;
+  problem.extent = 20;
+  problem.gog = field->params();
+  problem.gog.threshold = field->threshold();
+  problem.start = s;
+  problem.goal = g;
+  GridSearchOptions search;
+  search.keep_path = true;
+  const GridReport lattice = solve_grid(*field, problem, search);
+  ASSERT_EQ(lattice.status, search::Status::solved);
+  std::vector<Vec<4>> input;
+  for (const auto& c : lattice.path)
+    input.push_back({c[0] + 0.5, c[1] + 0.5, c[2] + 0.5, c[3] + 0.5});
+  ASSERT_GT(input.size(), 10u);
+  const double before = polyline_length<4>(input);
+  int improved = 0;
+  for (const long after : {1L, 7L, 40L, 200L, 1000L, 5000L}) {
+    std::stop_source source;
+    StoppingWorld stopping{w, source, after};
+    TightenOptions t;
+    t.max_segment = 0.5;  // many points per segment: a lazy stop would keep them all
+    t.time_limit_s = 60.0;
+    t.stop = Stop(source.get_token());
+    std::vector<Vec<4>> path = input;
+    tighten_in_place(stopping, path, t);
+    const std::string what = "stopped after " + std::to_string(after) + " tests";
+    test_support::expect_valid(w, path, start, goal, what);
+    EXPECT_LE(polyline_length<4>(path), before + 1e-9) << what;
+    // Stopped before the first sweep got going, the subdivision's points all go again (kept,
+    // they would triple the count here).
+    if (after <= 7) EXPECT_LE(path.size(), input.size() + 1) << what;
+    improved += polyline_length<4>(path) < before - 1e-6;
+  }
+  EXPECT_GE(improved, 3);  // the later stops come after real progress
 }
 
 }  // namespace

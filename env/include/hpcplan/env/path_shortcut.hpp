@@ -97,36 +97,47 @@ bool slide_towards(const W& world, const Vec<W::kDim>& a, Vec<W::kDim>& q, const
   return false;
 }
 
-// Keeps a vertex only where its kept predecessor cannot see its successor.
-template <class W>
-void drop_visible(const W& world, std::vector<Vec<W::kDim>>& path) {
+// Keeps a vertex only where its kept predecessor cannot see its successor; once
+// `out_of_time()`, keeps the rest unseen.
+template <class W, class OutOfTime>
+void drop_visible(const W& world, std::vector<Vec<W::kDim>>& path, OutOfTime&& out_of_time) {
   std::vector<Vec<W::kDim>> kept{path.front()};
   for (std::size_t i = 1; i + 1 < path.size(); ++i)
-    if (!world.segment_free(kept.back(), path[i + 1])) kept.push_back(path[i]);
+    if (out_of_time() || !world.segment_free(kept.back(), path[i + 1])) kept.push_back(path[i]);
   kept.push_back(path.back());
   path.swap(kept);
 }
 
+// Splits every segment longer than max_segment into equal pieces; `inserted` marks the new
+// points.
 template <int D>
-void subdivide(std::vector<Vec<D>>& path, double max_segment) {
+void subdivide(std::vector<Vec<D>>& path, double max_segment, std::vector<char>& inserted) {
   std::vector<Vec<D>> fine{path.front()};
+  inserted.assign(1, 0);
   for (std::size_t i = 1; i < path.size(); ++i) {
     const int pieces =
         std::max(1, static_cast<int>(std::ceil(distance<D>(path[i - 1], path[i]) / max_segment)));
     // The last piece ends on the vertex itself: lerp at 1 may miss it by a rounding step, and
     // the path's end must stay exactly the goal.
-    for (int j = 1; j < pieces; ++j)
+    for (int j = 1; j < pieces; ++j) {
       fine.push_back(lerp<D>(path[i - 1], path[i], double(j) / pieces));
+      inserted.push_back(1);
+    }
     fine.push_back(path[i]);
+    inserted.push_back(0);
   }
   path.swap(fine);
 }
 
 // One sweep over the interior vertices: each slides towards its chord, then along each axis.
-template <class W>
-void relax(const W& world, std::vector<Vec<W::kDim>>& path) {
+// Stops early, between vertices, once `out_of_time()` says so (every accepted slide kept the
+// path valid, so a part sweep leaves a valid path too). Returns the index of the first vertex
+// it did not relax (the goal's when it finished).
+template <class W, class OutOfTime>
+std::size_t relax(const W& world, std::vector<Vec<W::kDim>>& path, OutOfTime&& out_of_time) {
   constexpr int D = W::kDim;
   for (std::size_t i = 1; i + 1 < path.size(); ++i) {
+    if (out_of_time()) return i;
     const Vec<D>& a = path[i - 1];
     const Vec<D>& b = path[i + 1];
     slide_towards(world, a, path[i], b, chord_foot<D>(a, path[i], b));
@@ -135,6 +146,21 @@ void relax(const W& world, std::vector<Vec<W::kDim>>& path) {
       if (axis_optimum<D>(a, path[i], b, k, target)) slide_towards(world, a, path[i], b, target);
     }
   }
+  return path.size() - 1;
+}
+
+// After a sweep stopped at vertex `from`: nothing from there on moved, so the points the
+// round's subdivision put there go again. What is left there are the vertices before the
+// subdivision and `from` itself, which lies on one of their segments: pieces of segments the
+// path already had, so still free, without the hundreds of idle vertices a high-dimensional
+// subdivision leaves.
+template <int D>
+void drop_unrelaxed_points(std::vector<Vec<D>>& path, const std::vector<char>& inserted,
+                           std::size_t from) {
+  std::size_t out = from + 1;
+  for (std::size_t j = from + 1; j < path.size(); ++j)
+    if (!inserted[j]) path[out++] = path[j];
+  path.resize(out);
 }
 
 }  // namespace detail
@@ -154,20 +180,30 @@ int tighten_in_place(const W& world, std::vector<Vec<W::kDim>>& path,
   const double max_segment = o.max_segment > 0 ? o.max_segment : total / 40.0;
   double length = total;
   int round = 0;
-  while (round < o.max_rounds && clock.seconds() < o.time_limit_s && !stop.poll()) {
+  std::vector<char> inserted;
+  // A round in high dimensions can cost more than a small budget (at 6D about 1 ms; a 10D
+  // segment along a lattice diagonal tests up to 2^10 cells at each step), so the budget is
+  // also checked between the vertices of every pass, not only between rounds.
+  const auto out_of_time = [&] { return clock.seconds() >= o.time_limit_s || stop.poll(); };
+  while (round < o.max_rounds && !out_of_time()) {
     ++round;
     // Big steps: drop the vertices whose neighbours see each other. Small steps: split long
     // segments again, so a straight run has vertices that can bend towards an obstacle edge it
     // should wrap, and relax every vertex.
-    detail::drop_visible(world, path);
-    detail::subdivide<D>(path, max_segment);
-    detail::relax(world, path);
+    detail::drop_visible(world, path, out_of_time);
+    detail::subdivide<D>(path, max_segment, inserted);
+    const std::size_t stopped_at = detail::relax(world, path, out_of_time);
+    if (stopped_at + 1 < path.size()) {
+      detail::drop_unrelaxed_points<D>(path, inserted, stopped_at);
+      break;
+    }
     const double now = polyline_length<D>(path);
     const bool converged = length - now < o.tolerance * length;
     length = now;
     if (converged) break;
   }
-  detail::drop_visible(world, path);  // no vertex left that a straight segment can replace
+  // No vertex left that a straight segment can replace (as far as the budget goes).
+  detail::drop_visible(world, path, out_of_time);
   return round;
 }
 
