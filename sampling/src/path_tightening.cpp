@@ -55,8 +55,7 @@ TighteningStats tighten_as(const ob::SpaceInformationPtr& si, og::PathGeometric&
                            const ob::PlannerTerminationCondition& ptc,
                            const TighteningOptions& options) {
   const SpaceView<D> view(si);
-  std::vector<env::Vec<D>> points;
-  for (const ob::State* s : path.getStates()) points.push_back(point_of<D>(s));
+  std::vector<env::Vec<D>> points = points_of<D>(path);
   TighteningStats stats;
   stats.length_before = env::polyline_length<D>(points);
   Stopwatch clock;
@@ -71,14 +70,7 @@ TighteningStats tighten_as(const ob::SpaceInformationPtr& si, og::PathGeometric&
   o.stop = stop_on(ptc);
   stats.rounds = env::tighten_in_place(view, points, o);
   stats.length_after = env::polyline_length<D>(points);
-  // Back into OMPL's path, reusing its states where there are enough.
-  auto& states = path.getStates();
-  while (states.size() > points.size()) {
-    si->freeState(states.back());
-    states.pop_back();
-  }
-  while (states.size() < points.size()) states.push_back(si->allocState());
-  for (std::size_t i = 0; i < points.size(); ++i) set_state<D>(states[i], points[i]);
+  set_path<D>(si, path, points);
   return stats;
 }
 

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <queue>
 #include <vector>
 
 #include "hpcplan/core/splitmix64.hpp"
@@ -14,6 +13,7 @@
 #include "hpcplan/search/best_first.hpp"
 #include "hpcplan/search/stamped_dense_map.hpp"
 #include "lattice_oracle.hpp"
+#include "support/bitmap_dijkstra.hpp"
 
 namespace {
 
@@ -28,35 +28,10 @@ struct BitmapCells {
   bool checked_free(int x, int y) const { return free(x, y); }
 };
 
-// Textbook Dijkstra over all cells with the seed rule written out again: 8 moves, a diagonal
-// only where both one-axis cells are free.
 double reference_cost(const BitmapCells& m, int sx, int sy, int gx, int gy) {
-  const int n = m.size;
-  std::vector<double> dist(static_cast<std::size_t>(n) * n, INFINITY);
-  using Item = std::pair<double, int>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> pq;
-  dist[sy * n + sx] = 0.0;
-  pq.push({0.0, sy * n + sx});
-  while (!pq.empty()) {
-    const auto [d, u] = pq.top();
-    pq.pop();
-    if (d > dist[u]) continue;
-    const int x = u % n, y = u / n;
-    if (x == gx && y == gy) return d;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        if (dx == 0 && dy == 0) continue;
-        const int nx = x + dx, ny = y + dy;
-        if (nx < 0 || ny < 0 || nx >= n || ny >= n || !m.free(nx, ny)) continue;
-        if (dx != 0 && dy != 0 && (!m.free(nx, y) || !m.free(x, ny))) continue;
-        const double nd = d + (dx != 0 && dy != 0 ? std::sqrt(2.0) : 1.0);
-        if (nd < dist[ny * n + nx] - 1e-12) {
-          dist[ny * n + nx] = nd;
-          pq.push({nd, ny * n + nx});
-        }
-      }
-  }
-  return INFINITY;
+  return test_support::bitmap_dijkstra(
+             m.size, [&m](int x, int y) { return !m.free(x, y); }, sx, sy, gx, gy)
+      .cost;
 }
 
 // Octile distance as the exact lattice cost: the heuristic the planner gives A* at 2D.

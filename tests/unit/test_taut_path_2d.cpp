@@ -7,13 +7,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <queue>
 #include <vector>
 
 #include "hpcplan/core/splitmix64.hpp"
 #include "hpcplan/env/path_shortcut.hpp"
 #include "hpcplan/env/taut_path_2d.hpp"
 #include "hpcplan/env/voxel_walk.hpp"
+#include "support/bitmap_dijkstra.hpp"
 #include "support/path_checks.hpp"
 #include "support/shortest_path_2d.hpp"
 
@@ -44,38 +44,12 @@ struct Bitmap2D {
   }
 };
 
-// A shortest lattice path (8 moves, no corner cut) as cell centres, by Dijkstra; empty when
-// the goal cell cannot be reached.
+// A shortest lattice path as cell centres; empty when the goal cell cannot be reached.
 std::vector<P> lattice_path(const Bitmap2D& m, int sx, int sy, int gx, int gy) {
-  const int n = m.n;
-  std::vector<double> dist(static_cast<std::size_t>(n) * n, INFINITY);
-  std::vector<int> parent(dist.size(), -1);
-  using Item = std::pair<double, int>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> pq;
-  dist[sy * n + sx] = 0;
-  pq.push({0.0, sy * n + sx});
-  while (!pq.empty()) {
-    const auto [d, u] = pq.top();
-    pq.pop();
-    if (d > dist[u]) continue;
-    const int x = u % n, y = u / n;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int nx = x + dx, ny = y + dy;
-        if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= n || ny >= n) continue;
-        if (m.blocked(nx, ny) || (dx && dy && (m.blocked(nx, y) || m.blocked(x, ny)))) continue;
-        const double nd = d + (dx && dy ? std::sqrt(2.0) : 1.0);
-        if (nd < dist[ny * n + nx] - 1e-12) {
-          dist[ny * n + nx] = nd;
-          parent[ny * n + nx] = u;
-          pq.push({nd, ny * n + nx});
-        }
-      }
-  }
-  if (std::isinf(dist[gy * n + gx])) return {};
+  const auto r = test_support::bitmap_dijkstra(
+      m.n, [&m](int x, int y) { return m.blocked(x, y); }, sx, sy, gx, gy);
   std::vector<P> path;
-  for (int u = gy * n + gx; u != -1; u = parent[u]) path.push_back({u % n + 0.5, u / n + 0.5});
-  std::reverse(path.begin(), path.end());
+  for (const auto& [x, y] : r.cells) path.push_back({x + 0.5, y + 0.5});
   return path;
 }
 

@@ -69,13 +69,14 @@ std::vector<Vec<2>> corners_inside(const Blocked& blocked, const Vec<2>& a, cons
     for (const auto& e : edges) {
       const Vec<2>& u = *e[0];
       const Vec<2>& v = *e[1];
-      if ((u[1] - y) * (v[1] - y) > 0) continue;
-      double x;
-      if (u[1] == v[1])
-        x_lo = std::min({x_lo, u[0], v[0]}), x_hi = std::max({x_hi, u[0], v[0]});
-      else {
-        x = u[0] + (v[0] - u[0]) * (y - u[1]) / (v[1] - u[1]);
-        x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x);
+      if ((u[1] - y) * (v[1] - y) > 0) continue;  // the edge does not reach this row
+      if (u[1] == v[1]) {                         // the edge lies on the row
+        x_lo = std::min({x_lo, u[0], v[0]});
+        x_hi = std::max({x_hi, u[0], v[0]});
+      } else {
+        const double x = u[0] + (v[0] - u[0]) * (y - u[1]) / (v[1] - u[1]);
+        x_lo = std::min(x_lo, x);
+        x_hi = std::max(x_hi, x);
       }
     }
     for (double x = std::ceil(x_lo); x <= x_hi; x += 1.0) {
@@ -169,8 +170,8 @@ TautStats taut_path_2d(const W& world, const Blocked& blocked, std::vector<Vec<2
   const Stop& stop = o.stop;
   // A replacement must gain more than moving a few vertices by a hair could.
   const double gain = 16 * o.hair;
-  // A pass is long enough to read the clock at each one.
   stats.converged = path.size() <= 2;  // no bend to replace
+  // A pass is long enough to read the clock before each one (check, not poll).
   while (!stats.converged && stats.passes < o.max_passes && !stop.check()) {
     ++stats.passes;
     bool replaced = false;
@@ -191,13 +192,19 @@ TautStats taut_path_2d(const W& world, const Blocked& blocked, std::vector<Vec<2
       if (take) {
         double length = 0;
         Vec<2> from = a;
-        for (const Vec<2>& c : chain) length += distance<2>(from, c), from = c;
+        for (const Vec<2>& c : chain) {
+          length += distance<2>(from, c);
+          from = c;
+        }
         length += distance<2>(from, b);
         take = length < distance<2>(a, q) + distance<2>(q, b) - gain;
       }
       if (take) {
         Vec<2> from = a;
-        for (const Vec<2>& c : chain) take = take && world.segment_free(from, c), from = c;
+        for (const Vec<2>& c : chain) {
+          take = take && world.segment_free(from, c);
+          from = c;
+        }
         take = take && world.segment_free(from, b);
       }
       if (!take) {

@@ -17,11 +17,13 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/StateValidityChecker.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/geometric/PathGeometric.h>
 
 #include "hpcplan/env/point.hpp"
 
@@ -42,6 +44,27 @@ template <int D>
 void set_state(ompl::base::State* s, const env::Vec<D>& p) {
   double* v = s->as<ompl::base::RealVectorStateSpace::StateType>()->values;
   for (int k = 0; k < D; ++k) v[k] = p[k];
+}
+
+// An OMPL path as points, and points written back into it (its states reused where there are
+// enough): for post-processing written over points, as env's smoothing is.
+template <int D>
+std::vector<env::Vec<D>> points_of(const ompl::geometric::PathGeometric& path) {
+  std::vector<env::Vec<D>> points;
+  for (std::size_t i = 0; i < path.getStateCount(); ++i)
+    points.push_back(point_of<D>(path.getState(i)));
+  return points;
+}
+template <int D>
+void set_path(const ompl::base::SpaceInformationPtr& si, ompl::geometric::PathGeometric& path,
+              const std::vector<env::Vec<D>>& points) {
+  auto& states = path.getStates();
+  while (states.size() > points.size()) {
+    si->freeState(states.back());
+    states.pop_back();
+  }
+  while (states.size() < points.size()) states.push_back(si->allocState());
+  for (std::size_t i = 0; i < points.size(); ++i) set_state<D>(states[i], points[i]);
 }
 
 template <env::World W>
