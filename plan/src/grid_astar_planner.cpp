@@ -15,6 +15,7 @@
 #include "hpcplan/env/gog_world.hpp"
 #include "hpcplan/env/path_shortcut.hpp"
 #include "hpcplan/env/taut_path_2d.hpp"
+#include "hpcplan/graph/jump_point_graph.hpp"
 #include "hpcplan/sampling/path_tightening.hpp"
 #include "hpcplan/sampling/world_space.hpp"
 
@@ -33,37 +34,30 @@ bool turns_at(const std::vector<std::vector<int>>& cells, std::size_t i) {
   return false;
 }
 
-// A 2D field as the taut path's world: its exact segment test and its cells, counting the cells
-// read. One run, one thread.
+// A 2D field as the taut path's world: its exact segment test and its cells (the jump point
+// search's view of them), counting the cells the walks read. One run, one thread.
 class FieldCells2D {
  public:
   static constexpr int kDim = 2;
-  explicit FieldCells2D(const GogField& field)
-      : field_(field),
-        x_(field.level_table(0)),
-        y_(field.level_table(1)),
-        extent_(field.extent()),
-        threshold_(field.threshold()) {}
+  explicit FieldCells2D(const GogField& field) : field_(field), cells_(field) {}
 
   bool segment_free(const env::Vec<2>& a, const env::Vec<2>& b) const {
     const env::GogSegmentWalk walk = env::gog_walk_segment(field_, a.data(), b.data());
-    cells_ += walk.cells;
+    walked_ += walk.cells;
     return walk.free;
   }
   // Cells outside the box are free, as in the walk: the box is convex, so no taut path rests
   // on its walls.
   bool blocked(int x, int y) const {
-    if (x < 0 || y < 0 || x >= extent_ || y >= extent_) return false;
-    return x_[x] + y_[y] >= threshold_;
+    const int n = cells_.extent();
+    return x >= 0 && y >= 0 && x < n && y < n && !cells_.free(x, y);
   }
-  std::uint64_t segment_cells() const { return cells_; }
+  std::uint64_t segment_cells() const { return walked_; }
 
  private:
   const GogField& field_;
-  const std::uint8_t* x_;
-  const std::uint8_t* y_;
-  int extent_, threshold_;
-  mutable std::uint64_t cells_ = 0;
+  GogCells2D cells_;
+  mutable std::uint64_t walked_ = 0;
 };
 
 }  // namespace
@@ -182,11 +176,11 @@ ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition&
 // bounded factor of the lattice answer.
 void GridAStarPlanner::smooth(og::PathGeometric& path, const ob::PlannerTerminationCondition& ptc) {
   const double budget_s = smoothing_budget_ * last_.counters.time_ms / 1e3;
-  const Stopwatch clock;
   if (si_->getStateDimension() == 2) {
     pull_taut_2d(path, ptc, budget_s);
     return;
   }
+  const Stopwatch clock;
   const bool simplify = si_->getStateDimension() >= kSimplifierFromDims;
   if (simplify) {
     og::PathSimplifier simplifier(si_, pdef_->getGoal(), pdef_->getOptimizationObjective());

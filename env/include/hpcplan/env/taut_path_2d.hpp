@@ -139,15 +139,15 @@ std::vector<Vec<2>> wrap_chain(const Blocked& blocked, const Vec<2>& a, const Ve
     chain.push_back(hull[i]);
   // The obstacles lie on the chord's side of every chain edge; "outward" is the other side.
   const double out = turn < 0 ? 1.0 : -1.0;  // left of a -> b when q is
+  const auto left_normal = [](const Vec<2>& u, const Vec<2>& v) {
+    const double dx = v[0] - u[0], dy = v[1] - u[1], l = std::hypot(dx, dy);
+    return Vec<2>{-dy / l, dx / l};
+  };
   std::vector<Vec<2>> moved(chain.size());
   for (std::size_t k = 0; k < chain.size(); ++k) {
     const Vec<2>& p = k == 0 ? a : chain[k - 1];
     const Vec<2>& c = chain[k];
     const Vec<2>& s = k + 1 == chain.size() ? b : chain[k + 1];
-    const auto left_normal = [](const Vec<2>& u, const Vec<2>& v) {
-      const double dx = v[0] - u[0], dy = v[1] - u[1], l = std::hypot(dx, dy);
-      return Vec<2>{-dy / l, dx / l};
-    };
     const Vec<2> n1 = left_normal(p, c), n2 = left_normal(c, s);
     Vec<2> dir{out * (n1[0] + n2[0]), out * (n1[1] + n2[1])};
     const double l = std::hypot(dir[0], dir[1]);

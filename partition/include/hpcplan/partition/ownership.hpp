@@ -13,6 +13,7 @@
 //    The balance is the slabs': a search that starts in one corner reaches the far slabs late.
 #include <array>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "hpcplan/graph/packed_key.hpp"
@@ -37,6 +38,8 @@ class Ownership {
     const std::uint64_t low = cleared >= 64 ? ~0ULL : ((1ULL << cleared) - 1);
     for (int a = 0; a < layout.dims(); ++a)
       mask_[layout.word_of(a)] &= ~(low << layout.shift_of(a));
+    if (slab_width_ > 0 && extent < 1)
+      throw std::logic_error("Ownership: slabs need the lattice's extent");
     if (slab_width_ > 0)
       for (int c = 0; c < extent; ++c) slab_owner_.push_back((c / slab_width_) % ranks_);
   }
