@@ -222,7 +222,9 @@ TEST(GogWorld, TheTightenerStoppedMidPassLeavesAValidLeanPath) {
     EXPECT_LE(polyline_length<4>(path), before + 1e-9) << what;
     // Stopped before the first sweep got going, the subdivision's points all go again (kept,
     // they would triple the count here).
-    if (after <= 7) EXPECT_LE(path.size(), input.size() + 1) << what;
+    if (after <= 7) {
+      EXPECT_LE(path.size(), input.size() + 1) << what;
+    }
     improved += polyline_length<4>(path) < before - 1e-6;
   }
   EXPECT_GE(improved, 3);  // the later stops come after real progress
