@@ -46,10 +46,13 @@ void print_summary(const plan::OmplBenchOptions& o, const plan::OmplBenchResult&
               o.extent, o.runs, o.time_s, static_cast<unsigned long long>(o.seed));
   std::printf("  straight line %.4f; reference quality (best final of any run) %s\n",
               r.straight_line, cell(r.reference_quality, "%.4f").c_str());
-  std::printf("  %-16s %7s %12s %9s %12s %9s %9s %14s %6s\n", "planner", "success", "t_first ms",
-              "q_first", "t_best ms", "q_best", "q_final", "coll. checks", "valid");
+  std::printf("  %-16s %7s %12s %9s %12s %9s %9s %14s %6s %9s\n", "planner", "success",
+              "t_first ms", "q_first", "t_best ms", "q_best", "q_final", "coll. checks", "valid",
+              "smooth x");
   for (const auto& name : o.planners) {
-    std::vector<double> tf, qf, tb, qb, qz, cc;
+    // smooth x: the smoothed answer's time over the lattice answer's in the same run
+    // (t_first over t_first less the smoothing), immune to the machine's drift between runs.
+    std::vector<double> tf, qf, tb, qb, qz, cc, sx;
     int solved = 0, runs = 0, valid = 0;
     for (const auto& row : r.rows) {
       if (row.planner != name) continue;
@@ -62,13 +65,18 @@ void print_summary(const plan::OmplBenchOptions& o, const plan::OmplBenchResult&
       qb.push_back(row.quality_best);
       qz.push_back(row.quality_final);
       cc.push_back(static_cast<double>(row.collision_checks));
+      if (row.solved && row.smoothing_s > 0 && row.time_first_s > row.smoothing_s)
+        sx.push_back(row.time_first_s / (row.time_first_s - row.smoothing_s));
     }
-    std::printf("  %-16s %3d/%-3d %12s %9s %12s %9s %9s %14s %3d/%d\n", name.c_str(), solved, runs,
-                cell(median(tf), "%.3f").c_str(), cell(median(qf), "%.4f").c_str(),
+    std::printf("  %-16s %3d/%-3d %12s %9s %12s %9s %9s %14s %3d/%-3d %8s\n", name.c_str(), solved,
+                runs, cell(median(tf), "%.3f").c_str(), cell(median(qf), "%.4f").c_str(),
                 cell(median(tb), "%.3f").c_str(), cell(median(qb), "%.4f").c_str(),
-                cell(median(qz), "%.4f").c_str(), cell(median(cc), "%.0f").c_str(), valid, runs);
+                cell(median(qz), "%.4f").c_str(), cell(median(cc), "%.0f").c_str(), valid, runs,
+                cell(median(sx), "%.2f").c_str());
   }
-  std::printf("  (medians over runs; times of solved runs; '-' = none reached)\n");
+  std::printf(
+      "  (medians over runs; times of solved runs; '-' = none reached; smooth x: grid planner's "
+      "answer time over its lattice answer's, same run)\n");
 }
 
 }  // namespace

@@ -20,7 +20,7 @@ std::string ompl_bench_csv(const plan::OmplBenchResult& result) {
   std::ostringstream out;
   out << "planner,dims,run,seed,solved,time_first_s,length_first,quality_first,time_best_s,"
          "quality_best,quality_final,length_final,time_s,collision_checks,path_valid,"
-         "improvements\n";
+         "improvements,smoothing_s\n";
   for (const auto& r : result.rows) {
     std::string trace;
     for (const auto& [t, len] : r.improvements) {
@@ -33,7 +33,8 @@ std::string ompl_bench_csv(const plan::OmplBenchResult& result) {
         << csv_number(r.quality_first) << ',' << csv_number(r.time_best_s) << ','
         << csv_number(r.quality_best) << ',' << csv_number(r.quality_final) << ','
         << csv_number(r.length_final) << ',' << csv_number(r.time_s) << ',' << r.collision_checks
-        << ',' << (r.path_valid ? 1 : 0) << ',' << trace << '\n';
+        << ',' << (r.path_valid ? 1 : 0) << ',' << trace << ',' << csv_number(r.smoothing_s)
+        << '\n';
   }
   return out.str();
 }

@@ -218,6 +218,8 @@ OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o) {
     row.run = run_index[row.planner]++;
     row.seed = o.seed;
     row.collision_checks = gog_space.checks->value() - checks_before;  // before re-validation
+    if (const auto* grid = dynamic_cast<const GridAStarPlanner*>(planner.get()))
+      row.smoothing_s = grid->lastSmoothingSeconds();
     const auto t = run.find("time REAL");
     row.time_s = t != run.end() ? std::stod(t->second) : clock.seconds();
     const auto pdef = planner->getProblemDefinition();

@@ -401,6 +401,16 @@ TEST(OmplBenchmark, EveryRunIsRecordedValidatedAndScored) {
       EXPECT_EQ(row.improvements.size(), 1u);
       EXPECT_FALSE(row.anytime);
       EXPECT_LT(row.time_best_s, 0.0);
+      // Its smoothing time is recorded (none without smoothing) and is part of its answer
+      // time, so the lattice answer's time in the same run is t_first - smoothing.
+      if (row.planner == "gridastar") {
+        EXPECT_GT(row.smoothing_s, 0.0);
+        EXPECT_LT(row.smoothing_s, row.time_first_s);
+      } else {
+        EXPECT_EQ(row.smoothing_s, 0.0);
+      }
+    } else {
+      EXPECT_EQ(row.smoothing_s, -1.0);  // not a grid planner: not applicable
     }
     if (!row.solved) continue;
     ++solved;

@@ -31,7 +31,8 @@ for c in ("collision_checks", "path_valid", "time_first"):
         sys.exit(f"FAIL: column {c} missing from the runs table: {cols}")
 rows = list(csv.DictReader(open(sys.argv[2])))
 need = ["planner", "dims", "run", "seed", "solved", "time_first_s", "length_first",
-        "quality_first", "time_best_s", "quality_best", "quality_final", "collision_checks"]
+        "quality_first", "time_best_s", "quality_best", "quality_final", "collision_checks",
+        "smoothing_s"]
 for c in need:
     if c not in rows[0]:
         sys.exit(f"FAIL: CSV column {c} missing")
@@ -42,6 +43,10 @@ for r in rows:
         sys.exit(f"FAIL: invalid path in {r['planner']} run {r['run']}")
     if r["planner"] == "gridastar" and r["solved"] != "1":
         sys.exit("FAIL: the grid planner must solve the default 2D problem")
+    if r["planner"] == "gridastar" and not 0 < float(r["smoothing_s"]) < float(r["time_first_s"]):
+        sys.exit(f"FAIL: the grid planner's smoothing time {r['smoothing_s']} is not within its answer time")
+    if r["planner"] != "gridastar" and r["smoothing_s"] != "":
+        sys.exit(f"FAIL: {r['planner']} reports a smoothing time")
 print("ompl_cli: database and CSV ok")
 PY
 

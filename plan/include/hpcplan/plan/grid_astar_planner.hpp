@@ -5,12 +5,12 @@
 //    seed-002 lattice, and the lattice path becomes continuous cell centres with the exact
 //    start and goal states at its ends (a segment inside one cell is always valid);
 //  - with `shortcut` on, the path is then shortened in continuous space, within a budget of
-//    `smoothing_budget` times the search's own time, below the lattice's quality limit
-//    (sqrt(d/2) in open space): in 2D to the exact taut path of its homotopy class on the
-//    field's cells (env/taut_path_2d.hpp, every segment through the field's exact walk, which
-//    is at least as strict as any motion validator the space has); in 3D with hpcplan's
-//    tightener and from 4D up with OMPL's PathSimplifier then the tightener, both through the
-//    space information's own motion validator;
+//    `smoothing_budget` times the search's own time (building the path included), below the
+//    lattice's quality limit (sqrt(d/2) in open space): in 2D to the exact taut path of its
+//    homotopy class on the field's cells (env/taut_path_2d.hpp, every segment through the field's
+//    exact walk, which is at least as strict as any motion validator the space has); in 3D with
+//    hpcplan's tightener and from 4D up with OMPL's PathSimplifier then the tightener, both through
+//    the space information's own motion validator;
 //  - the lattice's collision checks are added to the world's counter, so checks are counted
 //    by one object for every planner.
 // Parameters (declared, so Benchmark logs them): weight (1 = A*), heuristic (lattice |
@@ -53,10 +53,13 @@ class GridAStarPlanner : public ompl::base::Planner {
   // The last search's report (lattice cost, expansions, ...), for callers that want more
   // than the path.
   const GridReport& lastReport() const { return last_; }
+  // Seconds the last solve spent smoothing (0 without smoothing).
+  double lastSmoothingSeconds() const { return last_smoothing_s_; }
 
  private:
+  // spent_s: seconds since the search ended (building the path), charged to the budget.
   void smooth(ompl::geometric::PathGeometric& path,
-              const ompl::base::PlannerTerminationCondition& ptc);
+              const ompl::base::PlannerTerminationCondition& ptc, double spent_s);
   void pull_taut_2d(ompl::geometric::PathGeometric& path,
                     const ompl::base::PlannerTerminationCondition& ptc, double budget_s);
 
@@ -69,6 +72,7 @@ class GridAStarPlanner : public ompl::base::Planner {
   double time_limit_s_ = 0.0;
   std::uint64_t max_states_ = 0;  // the search's state budget, set at the first solve
   GridReport last_;
+  double last_smoothing_s_ = 0.0;
 };
 
 }  // namespace hpcplan::plan

@@ -58,6 +58,9 @@ struct OmplRunRow {
   double time_best_s = -1.0, quality_best = -1.0;
   double length_final = -1.0, quality_final = -1.0;
   std::uint64_t collision_checks = 0;
+  // The grid planner's smoothing (-1 for other planners): its seconds in this run, so the
+  // smoothed answer's cost over the lattice answer is measured within one run.
+  double smoothing_s = -1.0;
   bool path_valid = true;
   bool anytime = false;  // optimizing and reported improvements; only these have a "best"
   std::vector<std::pair<double, double>> improvements;  // (s, length)
