@@ -17,7 +17,8 @@ echo "hpcplan: grid search on the GOG field over 2 MPI ranks (mpirun -np 2), sta
   done
   mpirun -np 2 --oversubscribe build/bin/hpcplan grid --dims 3 --algo bfs --compare-serial --json
   # A search big enough for two ranks to pay (about 2-3 s serially on one core of this kind of
-  # machine): 6D Dijkstra, bulk-synchronous, ownership by 2-wide cells.
+  # machine): 6D Dijkstra with the ownership measured best there, two contiguous slabs
+  # (docs/PERFORMANCE.md, "Slab ownership").
   mpirun -np 2 --oversubscribe build/bin/hpcplan grid --dims 6 --extent 11 --algo dijkstra \
-    --mode bulk --owner-coarsen 1 --compare-serial --json
+    --owner-slabs 6 --compare-serial --json
 } | python3 scripts/grid_table.py
