@@ -184,8 +184,12 @@ ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition&
 // took, so the smoothed answer costs a bounded factor of the lattice answer.
 void GridAStarPlanner::smooth(og::PathGeometric& path, const ob::PlannerTerminationCondition& ptc,
                               double spent_s) {
-  const double budget_s = smoothing_budget_ * last_.counters.time_ms / 1e3 - spent_s;
-  if (smoothing_budget_ > 0 && budget_s <= 0) return;
+  // 0 = no limit (smoothing_budget 0: until it converges).
+  double budget_s = 0.0;
+  if (smoothing_budget_ > 0) {
+    budget_s = smoothing_budget_ * last_.counters.time_ms / 1e3 - spent_s;
+    if (budget_s <= 0) return;  // building the path spent it all
+  }
   if (si_->getStateDimension() == 2) {
     pull_taut_2d(path, ptc, budget_s);
     return;
