@@ -7,6 +7,7 @@
 
 #include "support/walled_line.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -87,6 +88,9 @@ TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
       {"dijkstra", dist::Scheme::bulk_sync, 0, 1},
       {"wastar", dist::Scheme::async, 0, 1},
       {"bfs", dist::Scheme::level_sync, 0, 2},
+      // Slabs of 3: most states have their whole neighbourhood on their rank, and their
+      // successors skip the owner look-up.
+      {"dijkstra", dist::Scheme::async, 0, 3},
   };
   SplitMix64 rng(2026);
   int solved = 0, compared = 0;
@@ -281,6 +285,10 @@ TEST(Ownership, SpreadsStatesEvenlyAndCoarseningKeepsCellsTogether) {
   EXPECT_EQ(same_cell_same_owner, cells_checked);
   const partition::Ownership<1> one(layout, 1, 0);
   EXPECT_EQ(one(layout.pack<1>(std::vector<int>{5, 6, 7})), 0);
+  // One rank owns every neighbourhood; the hash vouches for none (it is asked per successor).
+  EXPECT_TRUE(one.holds_neighbourhood(layout.pack<1>(std::vector<int>{5, 6, 7})));
+  EXPECT_FALSE(partition::Ownership<1>(layout, 2, 2)
+                   .holds_neighbourhood(layout.pack<1>(std::vector<int>{5, 6, 7})));
 }
 
 // Slabs: the owner depends on the first coordinate alone, (x / w) mod P, on every key width.
@@ -293,12 +301,38 @@ void expect_slab_owners(int dims, int extent) {
     for (const int width : {1, 3, extent}) {
       const partition::Ownership<W> slabs(layout, ranks, 0, width, extent);
       EXPECT_EQ(slabs.slab_width(), width);
+      int interior = 0;
       for (int i = 0; i < 2000; ++i) {
         std::vector<int> c(dims);
         for (int& x : c) x = static_cast<int>(rng.next_below(extent));
-        ASSERT_EQ(slabs(layout.pack<W>(c)), (c[0] / width) % ranks)
-            << "dims " << dims << " ranks " << ranks << " width " << width;
+        const auto s = layout.pack<W>(c);
+        const int owner = (c[0] / width) % ranks;
+        ASSERT_EQ(slabs(s), owner) << "dims " << dims << " ranks " << ranks << " width " << width;
+        // A state that vouches for its neighbourhood: every state one step away on any axes
+        // (the first axis decides; both steps, clamped to the lattice) has its owner.
+        if (!slabs.holds_neighbourhood(s)) continue;
+        ++interior;
+        for (const int step : {-1, 1}) {
+          std::vector<int> t = c;
+          t[0] = std::clamp(c[0] + step, 0, extent - 1);
+          if (dims > 1) t[1] = std::clamp(c[1] - step, 0, extent - 1);
+          ASSERT_EQ(slabs(layout.pack<W>(t)), owner)
+              << "dims " << dims << " ranks " << ranks << " width " << width << " x " << c[0];
+        }
       }
+      // Interior first coordinates: those whose two neighbours share their slab's owner.
+      int expected_interior = 0;
+      for (int x = 0; x < extent; ++x) {
+        const int o = (x / width) % ranks;
+        expected_interior += (x == 0 || ((x - 1) / width) % ranks == o) &&
+                             (x == extent - 1 || ((x + 1) / width) % ranks == o);
+      }
+      if (expected_interior == 0)
+        EXPECT_EQ(interior, 0) << "dims " << dims << " ranks " << ranks << " width " << width;
+      else if (expected_interior == extent)
+        EXPECT_EQ(interior, 2000) << "dims " << dims << " ranks " << ranks << " width " << width;
+      else
+        EXPECT_GT(interior, 0) << "dims " << dims << " ranks " << ranks << " width " << width;
     }
 }
 

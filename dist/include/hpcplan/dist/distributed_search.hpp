@@ -213,6 +213,16 @@ class DistributedSearch {
     // Counted locally: a member updated per successor costs a store each time.
     std::uint64_t generated = 0;
     bool stop = false;
+    // Where every successor is owned here, the loop is the serial engine's: no owner asked.
+    if (holds_neighbourhood(x)) {
+      graph_.for_each_successor(
+          x, [&](const State& t, const Cost& cost, Move m) __attribute__((always_inline)) {
+            ++generated;
+            if (!stop) stop = !accept(t, gx + cost, m);
+          });
+      generated_ += generated;
+      return;
+    }
     const auto x_cell = cell_of(x);
     // (Forced inline, as the serial engine's: GCC kept it a call per successor.)
     graph_.for_each_successor(
@@ -228,6 +238,16 @@ class DistributedSearch {
             route(o, Record{t, gt, m});
         });
     generated_ += generated;
+  }
+
+  // True when the owner vouches for x's whole unit neighbourhood and the graph's moves stay
+  // inside it (both declare it; any other owner or graph is asked per successor).
+  bool holds_neighbourhood(const State& x) const {
+    if constexpr (
+        requires { owner_.holds_neighbourhood(x); } && requires { G::kMoveRadius; })
+      return G::kMoveRadius == 1 && owner_.holds_neighbourhood(x);
+    else
+      return false;
   }
 
   // Owners that group states into cells (Ownership::cell) let neighbours in the expanded

@@ -37,6 +37,9 @@ class LatticeGraph {
   using Hash = PackedKeyHash<W>;
   using Cost = LatticeCost;
   static constexpr Move kNoMove = 0xFFFF;
+  // Every move changes each coordinate by at most this much (both rules): an owner whose
+  // region holds x's whole unit neighbourhood owns all of x's successors.
+  static constexpr int kMoveRadius = 1;
 
   LatticeGraph(const GogField& field, Connectivity connectivity)
       : field_(field),

@@ -11,6 +11,9 @@
 //    w = 6, two ranks: 8 bytes sent per expansion against 244 with the hash), and the owner
 //    is one table look-up.
 //    The balance is the slabs': a search that starts in one corner reaches the far slabs late.
+//    A state whose first coordinate and both its neighbours lie in slabs of one owner keeps its
+//    whole unit neighbourhood on that rank (holds_neighbourhood), so its successors need no
+//    owner look-up at all: most states of a wide slab.
 #include <array>
 #include <cstdint>
 #include <stdexcept>
@@ -40,8 +43,14 @@ class Ownership {
       mask_[layout.word_of(a)] &= ~(low << layout.shift_of(a));
     if (slab_width_ > 0 && extent < 1)
       throw std::logic_error("Ownership: slabs need the lattice's extent");
-    if (slab_width_ > 0)
+    if (slab_width_ > 0) {
       for (int c = 0; c < extent; ++c) slab_owner_.push_back((c / slab_width_) % ranks_);
+      for (int c = 0; c < extent; ++c) {
+        const int below = c > 0 ? slab_owner_[c - 1] : slab_owner_[c];
+        const int above = c + 1 < extent ? slab_owner_[c + 1] : slab_owner_[c];
+        slab_interior_.push_back(below == slab_owner_[c] && above == slab_owner_[c]);
+      }
+    }
   }
 
   int operator()(const PackedKey<W>& s) const {
@@ -49,6 +58,14 @@ class Ownership {
     if (slab_width_ > 0) return slab_owner_[(s.w[axis_word_] >> axis_shift_) & axis_mask_];
     return static_cast<int>(hash_key(cell(s)) % static_cast<std::uint64_t>(ranks_));
   }
+  // Whether every state within one step of s on every axis (s's unit neighbourhood) has s's
+  // owner. Conservative: false says nothing.
+  bool holds_neighbourhood(const PackedKey<W>& s) const {
+    if (ranks_ == 1) return true;
+    if (slab_width_ > 0) return slab_interior_[(s.w[axis_word_] >> axis_shift_) & axis_mask_];
+    return false;
+  }
+
   // The coarse cell of s (s itself for k = 0): states of one cell share their owner, which
   // lets a caller skip the hash for neighbours that stay in the expanded state's cell.
   PackedKey<W> cell(const PackedKey<W>& s) const {
@@ -67,7 +84,8 @@ class Ownership {
   int slab_width_;
   int axis_word_, axis_shift_;
   std::uint64_t axis_mask_;
-  std::vector<int> slab_owner_;  // by first coordinate
+  std::vector<int> slab_owner_;      // by first coordinate
+  std::vector<char> slab_interior_;  // by first coordinate: it and both neighbours one owner's
   std::array<std::uint64_t, W> mask_{};
 };
 
