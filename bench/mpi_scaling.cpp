@@ -3,7 +3,10 @@
 //   - the serial engine on rank 0 alone (the other ranks sleep in a barrier), unless
 //     --no-serial, then
 //   - the distributed engine once for every combination of --modes, --batches, --slabs,
-//     --coarsen and --sent-filters (a slab ownership, width > 0, runs with no coarsening);
+//     --coarsen and --sent-filters (a slab ownership, width > 0, runs with no coarsening),
+//     and with --balanced-cuts once more per mode, batch and filter with prefix cuts placed
+//     where a serial run's expansions split evenly (found before the rounds, on rank 0, by the
+//     rank simulation's census: calibration, not counted in any time);
 //   - with --ceiling, the serial search on every rank at once (scheme "ceiling": the speedup
 //     the machine itself allows P copies of this memory-bound work).
 // Interleaving matters on a noisy machine: the speed of a shared VM drifts by 10-25% over a
@@ -27,6 +30,7 @@
 #include "hpcplan/core/progress.hpp"
 #include "hpcplan/dist/grid_planner_mpi.hpp"
 #include "hpcplan/mpi/communicator.hpp"
+#include "hpcplan/partition/rank_simulation.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
 
 namespace {
@@ -65,6 +69,7 @@ int main(int argc, char** argv) {
   int repeats = 3;
   bool no_serial = false;
   bool ceiling = false;
+  bool balanced_cuts = false;
   std::string csv;
   app.add_option("--dims", p.dims)->required();
   app.add_option("--extent", p.extent);
@@ -86,6 +91,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-serial", no_serial);
   app.add_flag("--ceiling", ceiling,
                "Also time the serial search on every rank at once (the machine's ceiling)");
+  app.add_flag("--balanced-cuts", balanced_cuts,
+               "Also run prefix-cut ownership balanced on a serial run's expansions (calibration "
+               "before the rounds, untimed)");
   app.add_option("--csv", csv, "Append rows to this CSV file (header when new)");
   try {
     app.parse(argc, argv);
@@ -111,6 +119,25 @@ int main(int argc, char** argv) {
               dist::validate(d);
               configs.push_back(d);
             }
+    if (balanced_cuts && comm.size() > 1) {
+      std::vector<std::uint32_t> cuts(static_cast<std::size_t>(comm.size() - 1));
+      if (root) {
+        const auto sim = partition::simulate_ranks(p, o, {comm.size()}, {0});
+        cuts = partition::balanced_prefix_cuts(sim, comm.size());
+      }
+      comm.broadcast(cuts.data(), static_cast<int>(cuts.size() * sizeof(std::uint32_t)), 0);
+      for (const auto& mode : modes)
+        for (std::size_t batch : batches)
+          for (int f : filters) {
+            dist::DistGridOptions d;
+            d.scheme = dist::parse_scheme(mode);
+            d.batch = batch;
+            d.sent_filter_log2 = f;
+            d.prefix_cuts = cuts;
+            dist::validate(d, p.extent, comm.size(), p.dims);
+            configs.push_back(d);
+          }
+    }
     std::vector<double> serial_t;
     std::vector<std::vector<double>> dist_t(configs.size()), ratio(configs.size()),
         of_ceiling(configs.size());
@@ -173,21 +200,26 @@ int main(int argc, char** argv) {
       const double med = median(dist_t[c]);
       const double ex = static_cast<double>(std::max<std::uint64_t>(1, g.counters.expanded));
       const double speedup = no_serial ? 0.0 : median(ratio[c]);
-      char line[1024];
-      std::snprintf(line, sizeof line,
-                    "%s,%d,%d,%d,%.2f,%s,%s,%zu,%d,%d,%d,%s,%.6f,%llu,%llu,%.3f,%.3f,%.3f,%.3f,"
-                    "%.3f,%.5f,%.2f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d\n",
-                    label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
-                    g.scheme.c_str(), configs[c].batch, configs[c].coarsen_shift,
-                    configs[c].sent_filter_log2, repeats,
-                    std::string(search::to_string(g.status)).c_str(), g.cost,
-                    static_cast<unsigned long long>(g.counters.expanded),
-                    static_cast<unsigned long long>(serial_expanded), serial_ms, med,
-                    no_serial ? 0.0 : serial_ms / med, speedup, speedup / comm.size(),
-                    messages / ex, bytes / ex, workload_deviation_percent(g.per_rank),
-                    serial_expanded ? ex / static_cast<double>(serial_expanded) : 0.0,
-                    lowest(ratio[c]), highest(ratio[c]), median(of_ceiling[c]),
-                    lowest(of_ceiling[c]), highest(of_ceiling[c]), configs[c].slab_width);
+      std::string cuts;  // positions joined by ';' (the CSV's own separator is ',')
+      for (auto x : configs[c].prefix_cuts) {
+        if (!cuts.empty()) cuts += ';';
+        cuts += std::to_string(x);
+      }
+      char line[2048];
+      std::snprintf(
+          line, sizeof line,
+          "%s,%d,%d,%d,%.2f,%s,%s,%zu,%d,%d,%d,%s,%.6f,%llu,%llu,%.3f,%.3f,%.3f,%.3f,"
+          "%.3f,%.5f,%.2f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%s\n",
+          label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
+          g.scheme.c_str(), configs[c].batch, configs[c].coarsen_shift, configs[c].sent_filter_log2,
+          repeats, std::string(search::to_string(g.status)).c_str(), g.cost,
+          static_cast<unsigned long long>(g.counters.expanded),
+          static_cast<unsigned long long>(serial_expanded), serial_ms, med,
+          no_serial ? 0.0 : serial_ms / med, speedup, speedup / comm.size(), messages / ex,
+          bytes / ex, workload_deviation_percent(g.per_rank),
+          serial_expanded ? ex / static_cast<double>(serial_expanded) : 0.0, lowest(ratio[c]),
+          highest(ratio[c]), median(of_ceiling[c]), lowest(of_ceiling[c]), highest(of_ceiling[c]),
+          configs[c].slab_width, cuts.c_str());
       rows << line;
       std::fputs(line, stderr);
     }
@@ -195,7 +227,7 @@ int main(int argc, char** argv) {
       char line[512];
       std::snprintf(line, sizeof line,
                     "%s,%d,%d,%d,%.2f,%s,ceiling,0,0,0,%d,solved,%.6f,%llu,%llu,%.3f,%.3f,%.3f,"
-                    "%.3f,%.3f,0,0,0,1,%.3f,%.3f,1,1,1,0\n",
+                    "%.3f,%.3f,0,0,0,1,%.3f,%.3f,1,1,1,0,\n",
                     label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
                     repeats, serial_cost, static_cast<unsigned long long>(serial_expanded),
                     static_cast<unsigned long long>(serial_expanded), serial_ms,
@@ -212,7 +244,7 @@ int main(int argc, char** argv) {
           "speedup_vs_serial,efficiency,"
           "messages_per_expansion,bytes_per_expansion,workload_deviation_percent,"
           "search_overhead,speedup_min,speedup_max,of_ceiling,of_ceiling_min,of_ceiling_max,"
-          "slabs\n";
+          "slabs,cuts\n";
       if (csv.empty()) {
         std::fputs(header, stdout);
         std::fputs(rows.str().c_str(), stdout);

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Strong scaling on this machine: P = 1 and P = 2 for one problem per dimension (d = 4, 6, 8,
-# 10; Dijkstra, sized to take >= 2 s on one rank), state-hash, coarse-cell and slab ownership,
+# 10; Dijkstra, sized to take >= 2 s on one rank), state-hash, coarse-cell and slab ownership
+# and prefix cuts balanced on a serial run (hpcplan_mpi_scaling --balanced-cuts),
 # asynchronous vs bulk-synchronous, the machine's own ceiling (the serial search on both cores
 # at once), and the effect of the batch size at 6D. Every row is timed against the serial
 # engine in the same mpirun job, interleaved round by round (median of --repeats ratios, with
@@ -25,7 +26,7 @@ for pr in "${problems[@]}"; do
   mpirun -np 1 "$bin" --dims "$1" --extent "$2" --algo dijkstra --repeats "$repeats" \
     --label "d$1" --csv "$csv" 2>/dev/null
   mpirun -np 2 "$bin" --dims "$1" --extent "$2" --algo dijkstra --repeats "$repeats" \
-    --modes async,bulk --coarsen "$3" --slabs "$4" --ceiling --label "d$1" --csv "$csv" \
+    --modes async,bulk --coarsen "$3" --slabs "$4" --balanced-cuts --ceiling --label "d$1" --csv "$csv" \
     2>/dev/null
 done
 # Batch size (async) at 6D.

@@ -81,6 +81,13 @@ Action register_grid_command(CLI::App& app) {
              0, 1 << 30)
       ->capture_default_str()
       ->group(mpi);
+  add_number(cmd, "--owner-cuts", d.prefix_cuts,
+             "Ownership by P - 1 cuts of the states ordered by their first two coordinates "
+             "(position c1 * extent + c2), instead of the hash; --simulate-ranks prints the "
+             "positions that balance the work",
+             1, 4294967295.0)
+      ->delimiter(',')
+      ->group(mpi);
   add_number(cmd, "--batch", d.batch, "Async: records per message", 1, 1048576)
       ->capture_default_str()
       ->group(mpi);
@@ -124,7 +131,8 @@ Action register_grid_command(CLI::App& app) {
     if (!a.goal.empty()) a.problem.goal = parse_coordinates(a.goal, "--goal");
 
     a.dist.scheme = dist::parse_scheme(a.mode);
-    dist::validate(a.dist, a.problem.extent);
+    dist::validate(a.dist, a.problem.extent, context.comm ? context.comm->size() : 1,
+                   a.problem.dims);
     if (!a.output.empty()) require_writable_destination(a.output, "--output");
 
     if (!a.simulate_ranks.empty()) {

@@ -8,8 +8,8 @@ cols = ["label", "ranks", "dims", "extent", "scheme", "batch", "coarsen", "sent_
         "serial_median_ms", "median_ms", "ratio_of_medians", "speedup_vs_serial", "efficiency",
         "messages_per_expansion", "bytes_per_expansion", "workload_deviation_percent",
         "search_overhead", "speedup_min", "speedup_max", "of_ceiling", "of_ceiling_min",
-        "of_ceiling_max", "slabs"]
-# Older CSVs lack the spread and slab columns.
+        "of_ceiling_max", "slabs", "cuts"]
+# Older CSVs lack the spread, slab and cut columns.
 cols = [c for c in cols if all(c in r for r in rows)]
 print("| " + " | ".join(cols) + " |")
 print("|" + "---|" * len(cols))
@@ -33,7 +33,12 @@ if best:
     for key, r in best.items():
         c = ceilings.get(key)
         cell = f"{c['speedup_vs_serial']} ({c['speedup_min']}-{c['speedup_max']})" if c else "-"
-        owner = f"slabs={r['slabs']}" if r.get("slabs", "0") not in ("", "0") else f"k={r['coarsen']}"
+        if r.get("cuts"):
+            owner = f"cuts={r['cuts']}"
+        elif r.get("slabs", "0") not in ("", "0"):
+            owner = f"slabs={r['slabs']}"
+        else:
+            owner = f"k={r['coarsen']}"
         print(f"| {key[0]} | {key[1]} | {r['scheme']} {owner} batch={r['batch']} | "
               f"{r['speedup_vs_serial']} ({r['speedup_min']}-{r['speedup_max']}) | {cell} | "
               f"{float(r['of_ceiling']):.1%} ({float(r['of_ceiling_min']):.1%}-"

@@ -29,7 +29,7 @@ std::string_view to_string(Scheme s) {
   return "unknown";
 }
 
-void validate(const DistGridOptions& o, int extent) {
+void validate(const DistGridOptions& o, int extent, int ranks, int dims) {
   if (o.coarsen_shift < 0 || o.coarsen_shift > 16)
     throw InputError("--owner-coarsen must be in 0..16, got " + std::to_string(o.coarsen_shift));
   if (o.slab_width < 0)
@@ -40,6 +40,25 @@ void validate(const DistGridOptions& o, int extent) {
   if (extent > 0 && o.slab_width > extent)
     throw InputError("--owner-slabs " + std::to_string(o.slab_width) +
                      " is wider than the extent " + std::to_string(extent));
+  if (!o.prefix_cuts.empty()) {
+    if (o.slab_width > 0 || o.coarsen_shift > 0)
+      throw InputError("--owner-cuts replaces --owner-slabs and --owner-coarsen: give one");
+    const std::uint64_t positions =
+        extent > 0
+            ? static_cast<std::uint64_t>(extent) * static_cast<std::uint64_t>(dims > 1 ? extent : 1)
+            : ~0ULL;
+    for (std::size_t j = 0; j < o.prefix_cuts.size(); ++j)
+      if (o.prefix_cuts[j] < 1 || o.prefix_cuts[j] >= positions ||
+          (j > 0 && o.prefix_cuts[j] <= o.prefix_cuts[j - 1]))
+        throw InputError(
+            "--owner-cuts must ascend strictly within 1.." +
+            (extent > 0 ? std::to_string(positions - 1) : std::string("extent^2 - 1")) + ", got " +
+            std::to_string(o.prefix_cuts[j]) + " at position " + std::to_string(j + 1));
+    if (ranks > 0 && o.prefix_cuts.size() != static_cast<std::size_t>(ranks - 1))
+      throw InputError("--owner-cuts needs P - 1 positions for P ranks: " + std::to_string(ranks) +
+                       " need " + std::to_string(ranks - 1) + ", got " +
+                       std::to_string(o.prefix_cuts.size()));
+  }
   if (o.batch < 1 || o.batch > (1u << 20))
     throw InputError("--batch must be in 1..1048576 records, got " + std::to_string(o.batch));
   if (!(o.batch_age_ms >= 0.0) || o.batch_age_ms > 1000.0)
@@ -80,7 +99,7 @@ void run_distributed(const GogField& field, const GridProblem& problem, const Gr
   d.sent_filter_log2 = dist.sent_filter_log2;
   d.yield_when_idle = comm.ranks_on_node() > static_cast<int>(std::thread::hardware_concurrency());
   const partition::Ownership<W> owner(graph.layout(), p, dist.coarsen_shift, dist.slab_width,
-                                      problem.extent);
+                                      problem.extent, dist.prefix_cuts);
 
   auto search = [&](const auto& h) {
     using H = std::remove_cvref_t<decltype(h)>;
@@ -111,7 +130,7 @@ void run_distributed(const GogField& field, const GridProblem& problem, const Gr
 GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOptions& options,
                                   const DistGridOptions& dist, const mpi::Communicator& comm) {
   hpcplan::validate(problem, options);
-  validate(dist, problem.extent);
+  validate(dist, problem.extent, comm.size(), problem.dims);
   Stopwatch setup;
   const GogField field(problem.dims, problem.extent, problem.gog);
   GridReport report = prepare_grid_report(problem, options, field, comm.ranks_on_node());
@@ -119,6 +138,7 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
   report.ranks = comm.size();
   report.coarsen_shift = dist.coarsen_shift;
   report.slab_width = dist.slab_width;
+  report.prefix_cuts = dist.prefix_cuts;
   report.batch = dist.batch;
   report.batch_age_ms = dist.batch_age_ms;
   report.sync_every = dist.sync_every;

@@ -11,7 +11,9 @@ namespace {
 
 nlohmann::json distributed_json(const GridReport& r) {
   nlohmann::json d;
-  if (r.slab_width > 0)
+  if (!r.prefix_cuts.empty())
+    d["ownership"] = {{"prefix_cuts", {{"axes", {0, 1}}, {"at", r.prefix_cuts}}}};
+  else if (r.slab_width > 0)
     d["ownership"] = {{"slabs", {{"axis", 0}, {"width", r.slab_width}}}};
   else
     d["ownership"] = {{"hash", "splitmix64"}, {"coarsen_shift", r.coarsen_shift}};
@@ -156,7 +158,9 @@ std::string to_summary(const GridReport& r) {
       bytes += k.bytes_sent;
     }
     char owner[48];
-    if (r.slab_width > 0)
+    if (!r.prefix_cuts.empty())
+      std::snprintf(owner, sizeof owner, "owner prefix cuts (%zu)", r.prefix_cuts.size());
+    else if (r.slab_width > 0)
       std::snprintf(owner, sizeof owner, "owner slabs of %d", r.slab_width);
     else
       std::snprintf(owner, sizeof owner, "owner coarsen %d", r.coarsen_shift);

@@ -8,6 +8,10 @@ namespace hpcplan {
 nlohmann::json to_json(const partition::RankSimulation& sim) {
   nlohmann::json splits = nlohmann::json::array();
   for (const auto& s : sim.splits) {
+    // Where the serial expansions split evenly (hpcplan grid --owner-cuts), for this P.
+    nlohmann::json cuts = nlohmann::json::array();
+    if (s.ranks <= static_cast<int>(sim.expanded_by_prefix.size()))
+      cuts = partition::balanced_prefix_cuts(sim, s.ranks);
     std::uint64_t max_ex = 0, min_ex = ~0ULL;
     for (auto e : s.expanded) {
       max_ex = std::max(max_ex, e);
@@ -22,7 +26,8 @@ nlohmann::json to_json(const partition::RankSimulation& sim) {
                       {"min_expanded_per_rank", min_ex},
                       {"remote_successors", s.remote_successors},
                       {"remote_fraction", s.remote_fraction},
-                      {"remote_per_expansion", s.remote_per_expansion}});
+                      {"remote_per_expansion", s.remote_per_expansion},
+                      {"balanced_prefix_cuts", cuts}});
   }
   return splits;
 }
@@ -42,6 +47,21 @@ std::string to_summary(const partition::RankSimulation& sim) {
                   s.stored_deviation_percent, s.imbalance, static_cast<unsigned long long>(max_ex),
                   100.0 * s.remote_fraction, s.remote_per_expansion);
     out += line;
+  }
+  // The cuts depend on P only, so once per rank count, and only where they fit on a line.
+  std::vector<int> shown;
+  for (const auto& s : sim.splits) {
+    if (s.ranks < 2 || s.ranks > 16 ||
+        std::find(shown.begin(), shown.end(), s.ranks) != shown.end())
+      continue;
+    shown.push_back(s.ranks);
+    if (s.ranks > static_cast<int>(sim.expanded_by_prefix.size())) continue;
+    std::string list;
+    for (auto c : partition::balanced_prefix_cuts(sim, s.ranks)) {
+      if (!list.empty()) list += ',';
+      list += std::to_string(c);
+    }
+    out += "  balanced --owner-cuts for " + std::to_string(s.ranks) + " ranks: " + list + "\n";
   }
   return out;
 }

@@ -36,8 +36,13 @@ class OwnershipCensus {
   static constexpr Move kNoMove = LatticeGraph<W>::kNoMove;
 
   OwnershipCensus(const LatticeGraph<W>& graph, const std::vector<int>& shifts,
-                  std::vector<SimulatedSplit>& splits)
-      : graph_(graph), splits_(splits) {
+                  std::vector<SimulatedSplit>& splits, std::vector<std::uint64_t>& by_prefix)
+      : graph_(graph),
+        splits_(splits),
+        by_prefix_(by_prefix),
+        extent_(graph.field().extent()),
+        second_(graph.layout().dims() > 1) {
+    by_prefix_.assign(Ownership<W>::prefix_count(graph.layout(), extent_), 0);
     for (int k : shifts) cells_.emplace_back(graph.layout(), 1, k);
     for (const auto& s : splits) {
       const auto it = std::find(shifts.begin(), shifts.end(), s.coarsen_shift);
@@ -57,6 +62,7 @@ class OwnershipCensus {
   template <class Emit>
   void for_each_successor(const State& x, Emit&& emit) const {
     hashes(x, hx_);
+    by_prefix_[prefix_of(x)]++;
     for (std::size_t i = 0; i < splits_.size(); ++i) {
       ox_[i] = owner(hx_, i);  // once per expansion, not per successor
       splits_[i].expanded[ox_[i]]++;
@@ -82,6 +88,15 @@ class OwnershipCensus {
   std::uint64_t collision_checks() const { return graph_.collision_checks(); }
 
  private:
+  std::uint32_t prefix_of(const State& s) const {
+    const auto& layout = graph_.layout();
+    const std::uint64_t m = layout.mask();
+    const auto c1 = static_cast<std::uint32_t>((s.w[layout.word_of(0)] >> layout.shift_of(0)) & m);
+    if (!second_) return c1;
+    const auto c2 = static_cast<std::uint32_t>((s.w[layout.word_of(1)] >> layout.shift_of(1)) & m);
+    return c1 * static_cast<std::uint32_t>(extent_) + c2;
+  }
+
   void hashes(const State& s, std::vector<std::uint64_t>& out) const {
     for (std::size_t k = 0; k < cells_.size(); ++k) out[k] = hash_key(cells_[k].cell(s));
   }
@@ -91,6 +106,9 @@ class OwnershipCensus {
 
   const LatticeGraph<W>& graph_;
   std::vector<SimulatedSplit>& splits_;
+  std::vector<std::uint64_t>& by_prefix_;
+  int extent_;
+  bool second_;
   std::vector<Ownership<W>> cells_;  // one per shift, used for cell() only
   std::vector<int> kind_;            // split -> index into cells_
   mutable std::vector<std::uint64_t> hx_, ht_;
@@ -103,7 +121,7 @@ void run(const GogField& field, const GridProblem& problem, const GridSearchOpti
          const std::vector<int>& shifts, RankSimulation& sim) {
   GridReport& report = sim.serial;
   LatticeGraph<W> graph(field, problem.connectivity);
-  OwnershipCensus<W> census(graph, shifts, sim.splits);
+  OwnershipCensus<W> census(graph, shifts, sim.splits, sim.expanded_by_prefix);
   const auto start = graph.pack(report.start);
   const auto goal = graph.pack(report.goal);
   census.observe_start(start);
@@ -119,6 +137,31 @@ void run(const GogField& field, const GridProblem& problem, const GridSearchOpti
 }
 
 }  // namespace
+
+std::vector<std::uint32_t> balanced_prefix_cuts(const RankSimulation& sim, int ranks) {
+  const auto& h = sim.expanded_by_prefix;
+  const auto n = static_cast<std::uint32_t>(h.size());
+  if (ranks < 1 || static_cast<std::uint32_t>(ranks) > n)
+    throw InputError("balanced prefix cuts: " + std::to_string(ranks) +
+                     " ranks need as many prefix positions, the lattice has " + std::to_string(n));
+  long double total = 0;
+  for (auto c : h) total += static_cast<long double>(c);
+  std::vector<std::uint32_t> cuts;
+  long double running = 0;  // expansions at positions below p
+  std::uint32_t p = 0;
+  for (int j = 1; j < ranks; ++j) {
+    const long double share = total * j / ranks;
+    // Every rank keeps at least one position: cut j lies in lo..hi.
+    const std::uint32_t lo = cuts.empty() ? 1 : cuts.back() + 1;
+    const std::uint32_t hi = n - static_cast<std::uint32_t>(ranks - j);
+    while (p < hi && (p < lo || running + static_cast<long double>(h[p]) / 2 < share))
+      running += static_cast<long double>(h[p++]);
+    // (The loop stops at the position whose midpoint first passes the share: the nearer of
+    // the two cuts around it.)
+    cuts.push_back(std::max(p, lo));
+  }
+  return cuts;
+}
 
 RankSimulation simulate_ranks(const GridProblem& problem, const GridSearchOptions& options,
                               const std::vector<int>& ranks, const std::vector<int>& shifts) {

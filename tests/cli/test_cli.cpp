@@ -169,6 +169,10 @@ TEST(Cli, BadInputExitsTwoWithOneLine) {
   expect_bad_input("grid --dims 2 --simulate-ranks 2 --simulate-coarsen 17", "--simulate-coarsen");
   expect_bad_input("grid --dims 2 --owner-slabs 2 --owner-coarsen 1", "--owner-slabs");
   expect_bad_input("grid --dims 2 --extent 50 --owner-slabs 51", "wider than the extent");
+  // Prefix cuts: P - 1 of them (a plain run has one rank), strictly inside extent^2.
+  expect_bad_input("grid --dims 2 --owner-cuts 5", "--owner-cuts needs P - 1 positions");
+  expect_bad_input("grid --dims 2 --extent 10 --owner-cuts 100", "--owner-cuts must ascend");
+  expect_bad_input("grid --dims 2 --owner-cuts 5 --owner-slabs 2", "--owner-cuts replaces");
 }
 
 // The rank simulator's report: shares per split are consistent with the observed search.
@@ -195,6 +199,18 @@ TEST(Cli, SimulateRanksReportsEverySplit) {
   // Cells of 4^3 states keep more successors local than the state hash.
   EXPECT_LT(j["rank_simulation"][4]["remote_fraction"].get<double>(),
             j["rank_simulation"][1]["remote_fraction"].get<double>());
+  // The balanced prefix cuts: P - 1 ascending positions inside the 30^2 of the first two axes.
+  for (const auto& s : j["rank_simulation"]) {
+    const auto cuts = s["balanced_prefix_cuts"].get<std::vector<int>>();
+    ASSERT_EQ(cuts.size(), s["ranks"].get<std::size_t>() - 1);
+    for (std::size_t i = 0; i < cuts.size(); ++i) {
+      EXPECT_GE(cuts[i], i == 0 ? 1 : cuts[i - 1] + 1);
+      EXPECT_LT(cuts[i], 900);
+    }
+  }
+  const CliRun table = run("grid --dims 3 --extent 30 --algo dijkstra --simulate-ranks 2");
+  ASSERT_EQ(table.code, 0) << table.err;
+  EXPECT_NE(table.out.find("balanced --owner-cuts for 2 ranks: "), std::string::npos) << table.out;
 }
 
 TEST(Cli, OutputFileIsWrittenWholeOrNotAtAll) {
@@ -246,6 +262,7 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
       {"grid --dims 2", "--gog-shift-v", "62"},
       {"grid --dims 2", "--owner-coarsen", "17"},
       {"grid --dims 2", "--owner-slabs", "1073741825"},
+      {"grid --dims 2", "--owner-cuts", "4294967296"},
       {"grid --dims 2", "--batch", "1048577"},
       {"grid --dims 2", "--batch-age-ms", "1001"},
       {"grid --dims 2", "--sync-every", "1e19"},
@@ -298,7 +315,7 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
       ++tried;
     }
   }
-  EXPECT_EQ(tried, 52 * 10 + 52);
+  EXPECT_EQ(tried, 53 * 10 + 53);
 }
 
 }  // namespace

@@ -68,8 +68,17 @@ struct Config {
   const char* algo;
   dist::Scheme scheme;
   int coarsen;
-  int slabs = 0;  // slab width; 0 = hash ownership
+  int slabs = 0;      // slab width; 0 = hash ownership
+  bool cuts = false;  // prefix cuts spaced evenly over the positions (one per extra rank)
 };
+
+// P - 1 prefix cuts spaced evenly over a lattice's extent^2 positions.
+std::vector<std::uint32_t> even_cuts(int extent, int ranks) {
+  std::vector<std::uint32_t> cuts;
+  const auto n = static_cast<std::uint32_t>(extent * extent);
+  for (int j = 1; j < ranks; ++j) cuts.push_back(std::max<std::uint32_t>(j, n * j / ranks));
+  return cuts;
+}
 
 TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
   const Config configs[] = {
@@ -91,6 +100,9 @@ TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
       // Slabs of 3: most states have their whole neighbourhood on their rank, and their
       // successors skip the owner look-up.
       {"dijkstra", dist::Scheme::async, 0, 3},
+      // Prefix cuts: the boundary runs along two axes.
+      {"astar", dist::Scheme::async, 0, 0, true},
+      {"dijkstra", dist::Scheme::bulk_sync, 0, 0, true},
   };
   SplitMix64 rng(2026);
   int solved = 0, compared = 0;
@@ -111,6 +123,7 @@ TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
         dopt.scheme = c.scheme == dist::Scheme::level_sync ? dist::Scheme::async : c.scheme;
         dopt.coarsen_shift = c.coarsen;
         dopt.slab_width = c.slabs;
+        if (c.cuts) dopt.prefix_cuts = even_cuts(p.extent, g_comm->size());
         dopt.batch = 1 + rng.next_below(64);  // small batches: many messages in flight
         const GridReport r = dist::solve_grid_distributed(p, o, dopt, *g_comm);
         if (!root()) continue;
@@ -123,7 +136,7 @@ TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
         SCOPED_TRACE(::testing::Message()
                      << "d=" << d << " seed=" << p.gog.seed << " algo=" << c.algo
                      << " scheme=" << r.scheme << " coarsen=" << c.coarsen << " slabs=" << c.slabs
-                     << " ranks=" << r.ranks);
+                     << " cuts=" << c.cuts << " ranks=" << r.ranks);
         ++compared;
         EXPECT_EQ(r.status, s.status);
         if (r.status != search::Status::solved || s.status != search::Status::solved) continue;
@@ -344,6 +357,95 @@ TEST(Ownership, SlabsFollowTheFirstCoordinate) {
   EXPECT_EQ(partition::Ownership<1>(layout, 2, 2, 4, 16).coarsen_shift(), 0);
 }
 
+// Cuts placed on a serial run's expansions split the real run's expansions about evenly, for
+// the job's rank count.
+TEST(Distributed, BalancedPrefixCutsSplitTheWorkEvenly) {
+  const int p_ranks = g_comm->size();
+  if (p_ranks == 1) {
+    GTEST_SKIP() << "one rank has nothing to balance";
+  }
+  GridProblem p;
+  p.dims = 4;
+  p.extent = 16;
+  GridSearchOptions o;
+  o.algorithm = GridAlgorithm::dijkstra;
+  const partition::RankSimulation sim = partition::simulate_ranks(p, o, {p_ranks}, {0});
+  dist::DistGridOptions d;
+  d.scheme = dist::Scheme::bulk_sync;
+  d.prefix_cuts = partition::balanced_prefix_cuts(sim, p_ranks);
+  ASSERT_EQ(d.prefix_cuts.size(), static_cast<std::size_t>(p_ranks - 1));
+  const GridReport r = dist::solve_grid_distributed(p, o, d, *g_comm);
+  // Two contiguous slabs of the same lattice (collective: every rank runs it).
+  dist::DistGridOptions halves;
+  halves.scheme = dist::Scheme::bulk_sync;
+  halves.slab_width = 8;
+  const GridReport h = dist::solve_grid_distributed(p, o, halves, *g_comm);
+  if (!root()) return;
+  ASSERT_EQ(r.status, search::Status::solved);
+  EXPECT_NEAR(r.cost, sim.serial.cost, 1e-9 * (1 + r.cost));
+  EXPECT_EQ(r.prefix_cuts, d.prefix_cuts);
+  // One of 256 positions holds at most a few percent of the work, so a cut lands within it.
+  const double deviation = workload_deviation_percent(r.per_rank);
+  EXPECT_LT(deviation, 8.0) << "cuts at " << ::testing::PrintToString(d.prefix_cuts);
+  // The halves are far less even at two ranks: the search starts in one of them.
+  if (p_ranks == 2) {
+    EXPECT_LT(deviation, workload_deviation_percent(h.per_rank));
+  }
+}
+
+TEST(Ownership, PrefixCutsOwnByPositionAndVouchOnlyForInteriorStates) {
+  const KeyLayout layout(3, 10);
+  SplitMix64 rng(11);
+  const std::vector<std::uint32_t> cuts{23, 24, 57};  // rank 1 owns position 23 alone
+  const partition::Ownership<1> owner(layout, 4, 0, 0, 10, cuts);
+  EXPECT_EQ(owner.slab_width(), 0);
+  EXPECT_EQ(owner.prefix_cuts(), cuts);
+  int interior = 0;
+  for (int i = 0; i < 3000; ++i) {
+    std::vector<int> c(3);
+    for (int& x : c) x = static_cast<int>(rng.next_below(10));
+    const auto s = layout.pack<1>(c);
+    const auto position = static_cast<std::uint32_t>(c[0] * 10 + c[1]);
+    const int expected =
+        static_cast<int>(std::upper_bound(cuts.begin(), cuts.end(), position) - cuts.begin());
+    ASSERT_EQ(owner(s), expected) << c[0] << "," << c[1];
+    if (!owner.holds_neighbourhood(s)) continue;
+    ++interior;
+    for (int da = -1; da <= 1; ++da)
+      for (int db = -1; db <= 1; ++db) {
+        std::vector<int> t = c;
+        t[0] = std::clamp(c[0] + da, 0, 9);
+        t[1] = std::clamp(c[1] + db, 0, 9);
+        t[2] = std::clamp(c[2] + da, 0, 9);
+        ASSERT_EQ(owner(layout.pack<1>(t)), expected) << c[0] << "," << c[1];
+      }
+  }
+  EXPECT_GT(interior, 1000);
+  // Rank 1's single position has no interior state.
+  EXPECT_FALSE(owner.holds_neighbourhood(layout.pack<1>(std::vector<int>{2, 3, 5})));
+  // One position fewer than ranks, strictly ascending, inside the lattice.
+  EXPECT_THROW(partition::Ownership<1>(layout, 3, 0, 0, 10, {5}), std::logic_error);
+  EXPECT_THROW(partition::Ownership<1>(layout, 3, 0, 0, 10, {5, 5}), std::logic_error);
+  EXPECT_THROW(partition::Ownership<1>(layout, 2, 0, 0, 10, {100}), std::logic_error);
+}
+
+TEST(Ownership, BalancedPrefixCutsFollowTheHistogram) {
+  partition::RankSimulation sim;
+  sim.expanded_by_prefix = {1, 1, 1, 1};
+  EXPECT_EQ(partition::balanced_prefix_cuts(sim, 2), (std::vector<std::uint32_t>{2}));
+  EXPECT_EQ(partition::balanced_prefix_cuts(sim, 4), (std::vector<std::uint32_t>{1, 2, 3}));
+  EXPECT_TRUE(partition::balanced_prefix_cuts(sim, 1).empty());
+  EXPECT_THROW(partition::balanced_prefix_cuts(sim, 5), InputError);
+  // One heavy position still leaves every rank a position of its own.
+  sim.expanded_by_prefix = {0, 100, 0, 0};
+  EXPECT_EQ(partition::balanced_prefix_cuts(sim, 3), (std::vector<std::uint32_t>{1, 2}));
+  // The cut goes to the nearer side of the position that crosses the share (half is 50).
+  sim.expanded_by_prefix = {10, 10, 70, 10};  // 20 | 80 rather than 90 | 10
+  EXPECT_EQ(partition::balanced_prefix_cuts(sim, 2), (std::vector<std::uint32_t>{2}));
+  sim.expanded_by_prefix = {30, 10, 15, 45};  // 55 | 45 rather than 40 | 60
+  EXPECT_EQ(partition::balanced_prefix_cuts(sim, 2), (std::vector<std::uint32_t>{3}));
+}
+
 TEST(DistributedOptions, ImpossibleValuesAreInputErrors) {
   dist::DistGridOptions d;
   d.batch = 0;
@@ -368,6 +470,19 @@ TEST(DistributedOptions, ImpossibleValuesAreInputErrors) {
   p.extent = 8;
   d.slab_width = 9;
   EXPECT_THROW(dist::solve_grid_distributed(p, GridSearchOptions{}, d, *g_comm), InputError);
+  // Prefix cuts: one fewer than ranks, ascending, inside extent^2, and not with another owner.
+  d = {};
+  d.prefix_cuts = {64};
+  EXPECT_THROW(dist::validate(d, 8, 2, 2), InputError);
+  d.prefix_cuts = {0};
+  EXPECT_THROW(dist::validate(d, 8, 2, 2), InputError);
+  d.prefix_cuts = {10, 10};
+  EXPECT_THROW(dist::validate(d, 8, 3, 2), InputError);
+  d.prefix_cuts = {10};
+  EXPECT_THROW(dist::validate(d, 8, 3, 2), InputError);
+  EXPECT_NO_THROW(dist::validate(d, 8, 2, 2));
+  d.slab_width = 2;
+  EXPECT_THROW(dist::validate(d, 8, 2, 2), InputError);
   EXPECT_THROW(dist::parse_scheme("sometimes"), InputError);
 }
 

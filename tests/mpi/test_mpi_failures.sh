@@ -25,6 +25,13 @@ timeout 120 mpirun -np 2 --oversubscribe "$bin" grid --dims 4 --json >"$tmp/out"
 python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert len(j['distributed']['per_rank'])==2" "$tmp/out" ||
   fail "JSON lacks per-rank figures"
 echo "ok: one JSON object with per-rank figures"
+# Prefix-cut ownership is reported as given, and the run solves.
+timeout 120 mpirun -np 2 --oversubscribe "$bin" grid --dims 4 --owner-cuts 40 --json >"$tmp/out" ||
+  fail "2-rank run with --owner-cuts failed"
+python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['status']=='solved'; \
+assert j['distributed']['ownership']=={'prefix_cuts': {'axes': [0, 1], 'at': [40]}}, j['distributed']['ownership']" \
+  "$tmp/out" || fail "--owner-cuts: JSON ownership is not the cuts given"
+echo "ok: prefix cuts reported in the JSON"
 
 # 3. A search far too big for its time limit ends with status timeout on all ranks.
 start=$(date +%s)

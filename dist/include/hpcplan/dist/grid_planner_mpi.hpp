@@ -13,6 +13,8 @@ struct DistGridOptions {
   Scheme scheme = Scheme::async;
   int coarsen_shift = 0;  // ownership hashes coordinates >> k (0 = the state itself)
   int slab_width = 0;     // > 0: ownership by slabs of this width along the first axis instead
+  // Non-empty: ownership by prefix cuts instead (partition/ownership.hpp), ranks - 1 positions.
+  std::vector<std::uint32_t> prefix_cuts;
   std::size_t batch = 512;
   double batch_age_ms = 0.5;
   std::uint64_t sync_every = 4096;
@@ -24,8 +26,9 @@ Scheme parse_scheme(std::string_view name);  // InputError if unknown
 std::string_view to_string(Scheme s);
 
 // InputError for impossible distributed options; with the lattice's extent, also for slabs
-// wider than it.
-void validate(const DistGridOptions& options, int extent = 0);
+// wider than it and prefix cuts outside it; with the rank count, also for cuts that do not
+// number one fewer.
+void validate(const DistGridOptions& options, int extent = 0, int ranks = 0, int dims = 2);
 
 GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOptions& options,
                                   const DistGridOptions& dist, const mpi::Communicator& comm);

@@ -35,11 +35,20 @@ struct SimulatedSplit {
 struct RankSimulation {
   GridReport serial;  // the search that was observed
   std::vector<SimulatedSplit> splits;
+  // The serial expansions by prefix position c1 * extent + c2 (Ownership's prefix cuts):
+  // the work model that balanced_prefix_cuts splits.
+  std::vector<std::uint64_t> expanded_by_prefix;
 };
 
 // InputError for rank counts outside 1..65536 or shifts outside 0..16.
 RankSimulation simulate_ranks(const GridProblem& problem, const GridSearchOptions& options,
                               const std::vector<int>& ranks, const std::vector<int>& shifts);
+
+// The P - 1 prefix positions that split the observed expansions most evenly over P ranks,
+// each cut where the running total first reaches its share (j/P of the whole). Positions
+// ascend strictly, so a prefix heavier than a share still leaves every rank some states.
+// InputError when P exceeds the prefix positions.
+std::vector<std::uint32_t> balanced_prefix_cuts(const RankSimulation& sim, int ranks);
 
 // Max - min of the shares (in percent) of `counts`; 0 for one rank.
 double deviation_percent(const std::vector<std::uint64_t>& counts);

@@ -38,6 +38,7 @@ struct GridReport : Result<std::vector<int>> {
   std::string scheme = "serial";  // serial | async | bulk_sync | level_sync
   int coarsen_shift = 0;
   int slab_width = 0;  // > 0: ownership by slabs of this width along the first axis
+  std::vector<std::uint32_t> prefix_cuts;  // non-empty: ownership by prefix cuts
   std::uint64_t batch = 0;
   double batch_age_ms = 0.0;
   std::uint64_t sync_every = 0;
