@@ -33,6 +33,7 @@ if any(r.get("serial_reference") for r in rows):
     last = rows[-1].get("serial_reference") or {}
     if last.get("speedup") is not None and rows[-1].get("distributed"):
         print(f"The last row, a search of seconds, ran {last['speedup']:.2f}x the serial engine on "
-              f"{rows[-1]['ranks']} ranks; a rank's expansion\n"
-              "still costs about 1.5-2x a serial one, and this VM's own ceiling for two searches at once is\n"
-              "about 1.6-2x (docs/PERFORMANCE.md, issue 17).")
+              f"{rows[-1]['ranks']} ranks, with workload deviation "
+              f"{rows[-1]['distributed']['workload_deviation_percent']:.1f}%.\n"
+              "Two serial searches at once ran 1.4-2.4x one search's speed on the 2-core VMs measured\n"
+              "(the machine's own ceiling; docs/PERFORMANCE.md, issue 17).")

@@ -16,9 +16,13 @@ echo "hpcplan: grid search on the GOG field over 2 MPI ranks (mpirun -np 2), sta
     mpirun -np 2 --oversubscribe build/bin/hpcplan grid --dims "$d" --compare-serial --json
   done
   mpirun -np 2 --oversubscribe build/bin/hpcplan grid --dims 3 --algo bfs --compare-serial --json
-  # A search big enough for two ranks to pay (about 2-3 s serially on one core of this kind of
-  # machine): 6D Dijkstra with the ownership measured best there, two contiguous slabs
-  # (docs/PERFORMANCE.md, "Slab ownership").
-  mpirun -np 2 --oversubscribe build/bin/hpcplan grid --dims 6 --extent 11 --algo dijkstra \
-    --owner-slabs 6 --compare-serial --json
+  # A search big enough for two ranks to pay (about 1-3 s serially on one core of this kind of
+  # machine): 6D Dijkstra with the ownership measured best there, prefix cuts placed by the
+  # rank simulation where a serial run's expansions split evenly (docs/PERFORMANCE.md, "Prefix
+  # cuts balanced on a serial run"); two slabs would split the work 63 : 37.
+  big=(--dims 6 --extent 11 --algo dijkstra)
+  cuts=$(build/bin/hpcplan grid "${big[@]}" --simulate-ranks 2 --simulate-coarsen 0 --json |
+    python3 -c "import json, sys; print(*json.load(sys.stdin)['rank_simulation'][0]['balanced_prefix_cuts'], sep=',')")
+  mpirun -np 2 --oversubscribe build/bin/hpcplan grid "${big[@]}" --owner-cuts "$cuts" \
+    --compare-serial --json
 } | python3 scripts/grid_table.py
