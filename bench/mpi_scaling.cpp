@@ -103,22 +103,16 @@ int main(int argc, char** argv) {
   const bool root = comm.rank() == 0;
   try {
     o.algorithm = parse_grid_algorithm(algo);
-    std::vector<dist::DistGridOptions> configs;
-    for (const auto& mode : modes)
-      for (std::size_t batch : batches)
-        for (int w : slabs)
-          for (int k : coarsen)
-            for (int f : filters) {
-              if (w > 0 && k > 0) continue;  // slabs replace the hash and its coarsening
-              dist::DistGridOptions d;
-              d.scheme = dist::parse_scheme(mode);
-              d.batch = batch;
-              d.coarsen_shift = k;
-              d.slab_width = w;
-              d.sent_filter_log2 = f;
-              dist::validate(d);
-              configs.push_back(d);
-            }
+    // The ownerships to time: each slab width with no coarsening, each coarsening with the
+    // hash, and the balanced cuts.
+    struct Owner {
+      int slabs = 0, coarsen = 0;
+      std::vector<std::uint32_t> cuts;
+    };
+    std::vector<Owner> owners;
+    for (int w : slabs)
+      for (int k : coarsen)
+        if (w == 0 || k == 0) owners.push_back({w, k, {}});  // slabs replace the hash
     if (balanced_cuts && comm.size() > 1) {
       std::vector<std::uint32_t> cuts(static_cast<std::size_t>(comm.size() - 1));
       if (root) {
@@ -126,18 +120,23 @@ int main(int argc, char** argv) {
         cuts = partition::balanced_prefix_cuts(sim, comm.size());
       }
       comm.broadcast(cuts.data(), static_cast<int>(cuts.size() * sizeof(std::uint32_t)), 0);
-      for (const auto& mode : modes)
-        for (std::size_t batch : batches)
+      owners.push_back({0, 0, cuts});
+    }
+    std::vector<dist::DistGridOptions> configs;
+    for (const auto& mode : modes)
+      for (std::size_t batch : batches)
+        for (const Owner& owner : owners)
           for (int f : filters) {
             dist::DistGridOptions d;
             d.scheme = dist::parse_scheme(mode);
             d.batch = batch;
+            d.coarsen_shift = owner.coarsen;
+            d.slab_width = owner.slabs;
+            d.prefix_cuts = owner.cuts;
             d.sent_filter_log2 = f;
-            d.prefix_cuts = cuts;
             dist::validate(d, p.extent, comm.size(), p.dims);
             configs.push_back(d);
           }
-    }
     std::vector<double> serial_t;
     std::vector<std::vector<double>> dist_t(configs.size()), ratio(configs.size()),
         of_ceiling(configs.size());

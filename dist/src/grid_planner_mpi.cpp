@@ -43,10 +43,7 @@ void validate(const DistGridOptions& o, int extent, int ranks, int dims) {
   if (!o.prefix_cuts.empty()) {
     if (o.slab_width > 0 || o.coarsen_shift > 0)
       throw InputError("--owner-cuts replaces --owner-slabs and --owner-coarsen: give one");
-    const std::uint64_t positions =
-        extent > 0
-            ? static_cast<std::uint64_t>(extent) * static_cast<std::uint64_t>(dims > 1 ? extent : 1)
-            : ~0ULL;
+    const std::uint64_t positions = extent > 0 ? partition::prefix_positions(dims, extent) : ~0ULL;
     for (std::size_t j = 0; j < o.prefix_cuts.size(); ++j)
       if (o.prefix_cuts[j] < 1 || o.prefix_cuts[j] >= positions ||
           (j > 0 && o.prefix_cuts[j] <= o.prefix_cuts[j - 1]))

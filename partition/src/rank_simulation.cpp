@@ -40,9 +40,9 @@ class OwnershipCensus {
       : graph_(graph),
         splits_(splits),
         by_prefix_(by_prefix),
-        extent_(graph.field().extent()),
-        second_(graph.layout().dims() > 1) {
-    by_prefix_.assign(Ownership<W>::prefix_count(graph.layout(), extent_), 0);
+        positions_(graph.layout(), 1, 0, 0, graph.field().extent()) {
+    const std::uint64_t n = prefix_positions(graph.layout().dims(), graph.field().extent());
+    if (n <= RankSimulation::kMaxCensusPositions) by_prefix_.assign(n, 0);
     for (int k : shifts) cells_.emplace_back(graph.layout(), 1, k);
     for (const auto& s : splits) {
       const auto it = std::find(shifts.begin(), shifts.end(), s.coarsen_shift);
@@ -62,7 +62,7 @@ class OwnershipCensus {
   template <class Emit>
   void for_each_successor(const State& x, Emit&& emit) const {
     hashes(x, hx_);
-    by_prefix_[prefix_of(x)]++;
+    if (!by_prefix_.empty()) by_prefix_[positions_.position(x)]++;
     for (std::size_t i = 0; i < splits_.size(); ++i) {
       ox_[i] = owner(hx_, i);  // once per expansion, not per successor
       splits_[i].expanded[ox_[i]]++;
@@ -88,15 +88,6 @@ class OwnershipCensus {
   std::uint64_t collision_checks() const { return graph_.collision_checks(); }
 
  private:
-  std::uint32_t prefix_of(const State& s) const {
-    const auto& layout = graph_.layout();
-    const std::uint64_t m = layout.mask();
-    const auto c1 = static_cast<std::uint32_t>((s.w[layout.word_of(0)] >> layout.shift_of(0)) & m);
-    if (!second_) return c1;
-    const auto c2 = static_cast<std::uint32_t>((s.w[layout.word_of(1)] >> layout.shift_of(1)) & m);
-    return c1 * static_cast<std::uint32_t>(extent_) + c2;
-  }
-
   void hashes(const State& s, std::vector<std::uint64_t>& out) const {
     for (std::size_t k = 0; k < cells_.size(); ++k) out[k] = hash_key(cells_[k].cell(s));
   }
@@ -107,8 +98,7 @@ class OwnershipCensus {
   const LatticeGraph<W>& graph_;
   std::vector<SimulatedSplit>& splits_;
   std::vector<std::uint64_t>& by_prefix_;
-  int extent_;
-  bool second_;
+  Ownership<W> positions_;           // one rank; used for position() only
   std::vector<Ownership<W>> cells_;  // one per shift, used for cell() only
   std::vector<int> kind_;            // split -> index into cells_
   mutable std::vector<std::uint64_t> hx_, ht_;
@@ -141,6 +131,12 @@ void run(const GogField& field, const GridProblem& problem, const GridSearchOpti
 std::vector<std::uint32_t> balanced_prefix_cuts(const RankSimulation& sim, int ranks) {
   const auto& h = sim.expanded_by_prefix;
   const auto n = static_cast<std::uint32_t>(h.size());
+  if (h.empty())
+    throw InputError(
+        "balanced prefix cuts: the lattice has more than " +
+        std::to_string(RankSimulation::kMaxCensusPositions) +
+        " positions (extent^2), too many to count expansions by position; give --owner-cuts "
+        "or slabs by hand");
   if (ranks < 1 || static_cast<std::uint32_t>(ranks) > n)
     throw InputError("balanced prefix cuts: " + std::to_string(ranks) +
                      " ranks need as many prefix positions, the lattice has " + std::to_string(n));

@@ -427,6 +427,14 @@ TEST(Ownership, PrefixCutsOwnByPositionAndVouchOnlyForInteriorStates) {
   EXPECT_THROW(partition::Ownership<1>(layout, 3, 0, 0, 10, {5}), std::logic_error);
   EXPECT_THROW(partition::Ownership<1>(layout, 3, 0, 0, 10, {5, 5}), std::logic_error);
   EXPECT_THROW(partition::Ownership<1>(layout, 2, 0, 0, 10, {100}), std::logic_error);
+  // A 2D lattice of 60,000^2 states: cuts keep nothing of that size (positions near 2^32).
+  const KeyLayout wide(2, 60000);
+  const partition::Ownership<1> halves(wide, 2, 0, 0, 60000, {1'800'000'000u});
+  EXPECT_EQ(halves(wide.pack<1>(std::vector<int>{29999, 59999})), 0);
+  EXPECT_EQ(halves(wide.pack<1>(std::vector<int>{30000, 0})), 1);
+  EXPECT_EQ(halves(wide.pack<1>(std::vector<int>{59999, 59999})), 1);
+  EXPECT_FALSE(halves.holds_neighbourhood(wide.pack<1>(std::vector<int>{29999, 59999})));
+  EXPECT_TRUE(halves.holds_neighbourhood(wide.pack<1>(std::vector<int>{59999, 59999})));
 }
 
 TEST(Ownership, BalancedPrefixCutsFollowTheHistogram) {
@@ -436,6 +444,9 @@ TEST(Ownership, BalancedPrefixCutsFollowTheHistogram) {
   EXPECT_EQ(partition::balanced_prefix_cuts(sim, 4), (std::vector<std::uint32_t>{1, 2, 3}));
   EXPECT_TRUE(partition::balanced_prefix_cuts(sim, 1).empty());
   EXPECT_THROW(partition::balanced_prefix_cuts(sim, 5), InputError);
+  // A lattice too large for the census has no histogram, and says so.
+  partition::RankSimulation huge;
+  EXPECT_THROW(partition::balanced_prefix_cuts(huge, 2), InputError);
   // One heavy position still leaves every rank a position of its own.
   sim.expanded_by_prefix = {0, 100, 0, 0};
   EXPECT_EQ(partition::balanced_prefix_cuts(sim, 3), (std::vector<std::uint32_t>{1, 2}));

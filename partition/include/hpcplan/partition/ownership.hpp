@@ -16,9 +16,12 @@
 //    like two slabs (a plane c1 = k with one step in c2), but placed to 1/extent^2 of the
 //    states, so it can split a search's expansions evenly (balanced_prefix_cuts in
 //    rank_simulation.hpp finds the positions from a serial run's expansions).
-//    Slabs and cuts: a state whose first coordinate and both its neighbours lie in slabs of one
-//    owner keeps its whole unit neighbourhood on that rank (holds_neighbourhood), so its successors
-//    need no owner look-up at all: most states of a wide slab.
+//    The owner only grows with the position, so the states between two positions of one owner
+//    are that owner's too.
+//  Slabs and cuts: a state whose 3 x 3 block of (c1, c2) neighbours has one owner keeps its
+//  whole unit neighbourhood on its rank (holds_neighbourhood), so its successors need no owner
+//  look-up: most states of a wide slab or a cut's side. Slabs decide it from a table by c1;
+//  cuts from the block's first and last positions. Neither keeps anything of size extent^2.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -29,63 +32,66 @@
 
 namespace hpcplan::partition {
 
+// How many positions c1 * extent + c2 a lattice has (extent^2; extent in 1D, where c2 = 0).
+inline std::uint64_t prefix_positions(int dims, int extent) {
+  return static_cast<std::uint64_t>(extent) * static_cast<std::uint64_t>(dims > 1 ? extent : 1);
+}
+
 template <int W>
 class Ownership {
  public:
-  // `slab_width` > 0 selects slabs (and ignores `coarsen_shift`); `extent` is the lattice's
-  // per-axis extent, which slabs need.
-  // Non-empty `prefix_cuts` (P - 1 ascending positions in 1..prefix_count - 1) select prefix
-  // cuts instead of both.
+  // `slab_width` > 0 selects slabs (and ignores `coarsen_shift`); non-empty `prefix_cuts`
+  // (P - 1 positions ascending strictly inside 1..positions - 1) select cuts instead of both.
+  // `extent`, the lattice's per-axis extent, is needed by both (and by position()).
   Ownership(const KeyLayout& layout, int ranks, int coarsen_shift, int slab_width = 0,
             int extent = 0, const std::vector<std::uint32_t>& prefix_cuts = {})
       : ranks_(ranks),
         shift_(slab_width > 0 || !prefix_cuts.empty() ? 0 : coarsen_shift),
         slab_width_(prefix_cuts.empty() ? slab_width : 0),
         prefix_cuts_(prefix_cuts),
-        axis_word_(layout.word_of(0)),
-        axis_shift_(layout.shift_of(0)),
-        axis_mask_(layout.mask()),
+        first_word_(layout.word_of(0)),
+        first_shift_(layout.shift_of(0)),
+        first_mask_(layout.mask()),
         second_word_(layout.word_of(layout.dims() > 1 ? 1 : 0)),
         second_shift_(layout.shift_of(layout.dims() > 1 ? 1 : 0)),
         second_mask_(layout.dims() > 1 ? layout.mask() : 0),
+        extent_(extent),
         second_extent_(layout.dims() > 1 ? extent : 1) {
     mask_.fill(~0ULL);
     const int cleared = shift_ < layout.bits() ? shift_ : layout.bits();
     const std::uint64_t low = cleared >= 64 ? ~0ULL : ((1ULL << cleared) - 1);
     for (int a = 0; a < layout.dims(); ++a)
       mask_[layout.word_of(a)] &= ~(low << layout.shift_of(a));
-    if (slab_width_ > 0 && extent < 1)
-      throw std::logic_error("Ownership: slabs need the lattice's extent");
-    if (slab_width_ > 0) {
-      for (int c = 0; c < extent; ++c) slab_owner_.push_back((c / slab_width_) % ranks_);
-      for (int c = 0; c < extent; ++c) {
-        const int below = c > 0 ? slab_owner_[c - 1] : slab_owner_[c];
-        const int above = c + 1 < extent ? slab_owner_[c + 1] : slab_owner_[c];
-        slab_interior_.push_back(below == slab_owner_[c] && above == slab_owner_[c]);
-      }
-    }
-    if (!prefix_cuts_.empty()) build_prefix_tables(extent);
-  }
-
-  // How many prefix positions a lattice of this extent has (extent^2; extent in 1D).
-  static std::uint32_t prefix_count(const KeyLayout& layout, int extent) {
-    return static_cast<std::uint32_t>(extent) *
-           static_cast<std::uint32_t>(layout.dims() > 1 ? extent : 1);
+    if ((slab_width_ > 0 || !prefix_cuts_.empty()) && extent < 1)
+      throw std::logic_error("Ownership: slabs and cuts need the lattice's extent");
+    if (slab_width_ > 0) build_slab_tables();
+    if (!prefix_cuts_.empty()) check_cuts();
   }
 
   int operator()(const PackedKey<W>& s) const {
     if (ranks_ == 1) return 0;
-    if (slab_width_ > 0) return slab_owner_[(s.w[axis_word_] >> axis_shift_) & axis_mask_];
-    if (!prefix_owner_.empty()) return prefix_owner_[prefix(s)];
+    if (slab_width_ > 0) return slab_owner_[first(s)];
+    if (!prefix_cuts_.empty()) return owner_at(position(s));
     return static_cast<int>(hash_key(cell(s)) % static_cast<std::uint64_t>(ranks_));
   }
   // Whether every state within one step of s on every axis (s's unit neighbourhood) has s's
   // owner. Conservative: false says nothing.
   bool holds_neighbourhood(const PackedKey<W>& s) const {
     if (ranks_ == 1) return true;
-    if (slab_width_ > 0) return slab_interior_[(s.w[axis_word_] >> axis_shift_) & axis_mask_];
-    if (!prefix_owner_.empty()) return prefix_interior_[prefix(s)];
-    return false;
+    if (slab_width_ > 0) return slab_interior_[first(s)];
+    if (prefix_cuts_.empty()) return false;
+    // The block's positions all lie between its first and last one (clamped to the lattice),
+    // and the owner only grows with the position.
+    const std::uint32_t c1 = first(s), c2 = second(s);
+    const std::uint32_t e2 = static_cast<std::uint32_t>(second_extent_);
+    const std::uint32_t lo = (c1 > 0 ? c1 - 1 : 0) * e2 + (c2 > 0 ? c2 - 1 : 0);
+    const std::uint32_t hi =
+        std::min(c1 + 1, static_cast<std::uint32_t>(extent_) - 1) * e2 + std::min(c2 + 1, e2 - 1);
+    return owner_at(lo) == owner_at(hi);
+  }
+  // s's position c1 * extent + c2 (needs the extent given at construction).
+  std::uint32_t position(const PackedKey<W>& s) const {
+    return first(s) * static_cast<std::uint32_t>(second_extent_) + second(s);
   }
 
   // The coarse cell of s (s itself for k = 0): states of one cell share their owner, which
@@ -102,55 +108,48 @@ class Ownership {
   const std::vector<std::uint32_t>& prefix_cuts() const { return prefix_cuts_; }
 
  private:
-  std::uint32_t prefix(const PackedKey<W>& s) const {
-    const auto c1 = static_cast<std::uint32_t>((s.w[axis_word_] >> axis_shift_) & axis_mask_);
-    const auto c2 = static_cast<std::uint32_t>((s.w[second_word_] >> second_shift_) & second_mask_);
-    return c1 * static_cast<std::uint32_t>(second_extent_) + c2;
+  std::uint32_t first(const PackedKey<W>& s) const {
+    return static_cast<std::uint32_t>((s.w[first_word_] >> first_shift_) & first_mask_);
+  }
+  std::uint32_t second(const PackedKey<W>& s) const {
+    return static_cast<std::uint32_t>((s.w[second_word_] >> second_shift_) & second_mask_);
+  }
+  int owner_at(std::uint32_t position) const {
+    return static_cast<int>(std::upper_bound(prefix_cuts_.begin(), prefix_cuts_.end(), position) -
+                            prefix_cuts_.begin());
   }
 
-  void build_prefix_tables(int extent) {
-    if (extent < 1) throw std::logic_error("Ownership: prefix cuts need the lattice's extent");
+  void build_slab_tables() {
+    for (int c = 0; c < extent_; ++c) slab_owner_.push_back((c / slab_width_) % ranks_);
+    for (int c = 0; c < extent_; ++c) {
+      const int below = slab_owner_[c > 0 ? c - 1 : c];
+      const int above = slab_owner_[c + 1 < extent_ ? c + 1 : c];
+      slab_interior_.push_back(below == slab_owner_[c] && above == slab_owner_[c]);
+    }
+  }
+
+  void check_cuts() const {
     if (static_cast<int>(prefix_cuts_.size()) != ranks_ - 1)
       throw std::logic_error("Ownership: prefix cuts need one position fewer than ranks");
-    const int e2 = second_extent_;
-    const std::uint32_t n = static_cast<std::uint32_t>(extent) * static_cast<std::uint32_t>(e2);
+    const std::uint64_t n = static_cast<std::uint64_t>(extent_) * second_extent_;
     for (std::size_t j = 0; j < prefix_cuts_.size(); ++j)
       if (prefix_cuts_[j] < 1 || prefix_cuts_[j] >= n ||
           (j > 0 && prefix_cuts_[j] <= prefix_cuts_[j - 1]))
         throw std::logic_error("Ownership: prefix cuts must ascend strictly inside the lattice");
-    prefix_owner_.resize(n);
-    for (std::uint32_t p = 0; p < n; ++p)
-      prefix_owner_[p] = static_cast<int>(
-          std::upper_bound(prefix_cuts_.begin(), prefix_cuts_.end(), p) - prefix_cuts_.begin());
-    // Interior: the 3 x 3 block of prefixes around (c1, c2), clamped to the lattice, has one
-    // owner (moves change each coordinate by at most one).
-    prefix_interior_.resize(n);
-    for (int a = 0; a < extent; ++a)
-      for (int b = 0; b < e2; ++b) {
-        const int o = prefix_owner_[a * e2 + b];
-        bool same = true;
-        for (int da = -1; da <= 1; ++da)
-          for (int db = -1; db <= 1; ++db) {
-            const int x = std::clamp(a + da, 0, extent - 1), y = std::clamp(b + db, 0, e2 - 1);
-            same = same && prefix_owner_[x * e2 + y] == o;
-          }
-        prefix_interior_[a * e2 + b] = same;
-      }
   }
 
   int ranks_;
   int shift_;
   int slab_width_;
   std::vector<std::uint32_t> prefix_cuts_;
-  int axis_word_, axis_shift_;
-  std::uint64_t axis_mask_;
+  int first_word_, first_shift_;
+  std::uint64_t first_mask_;
   int second_word_, second_shift_;
   std::uint64_t second_mask_;
-  int second_extent_;
-  std::vector<int> prefix_owner_;      // by prefix position
-  std::vector<char> prefix_interior_;  // by prefix position: its 3 x 3 block one owner's
-  std::vector<int> slab_owner_;        // by first coordinate
-  std::vector<char> slab_interior_;    // by first coordinate: it and both neighbours one owner's
+  int extent_;
+  int second_extent_;                // extent, or 1 in 1D (c2 = 0)
+  std::vector<int> slab_owner_;      // by first coordinate
+  std::vector<char> slab_interior_;  // by first coordinate: it and both neighbours one owner's
   std::array<std::uint64_t, W> mask_{};
 };
 

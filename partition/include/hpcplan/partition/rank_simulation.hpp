@@ -36,8 +36,10 @@ struct RankSimulation {
   GridReport serial;  // the search that was observed
   std::vector<SimulatedSplit> splits;
   // The serial expansions by prefix position c1 * extent + c2 (Ownership's prefix cuts):
-  // the work model that balanced_prefix_cuts splits.
+  // the work model that balanced_prefix_cuts splits. Empty for lattices of more than
+  // kMaxCensusPositions positions (extent > 2048 from 2D up), whose table would not fit.
   std::vector<std::uint64_t> expanded_by_prefix;
+  static constexpr std::uint64_t kMaxCensusPositions = std::uint64_t{1} << 22;
 };
 
 // InputError for rank counts outside 1..65536 or shifts outside 0..16.
@@ -47,7 +49,7 @@ RankSimulation simulate_ranks(const GridProblem& problem, const GridSearchOption
 // The P - 1 prefix positions that split the observed expansions most evenly over P ranks,
 // each cut where the running total first reaches its share (j/P of the whole). Positions
 // ascend strictly, so a prefix heavier than a share still leaves every rank some states.
-// InputError when P exceeds the prefix positions.
+// InputError when P exceeds the prefix positions, or when the census has none (too large).
 std::vector<std::uint32_t> balanced_prefix_cuts(const RankSimulation& sim, int ranks);
 
 // Max - min of the shares (in percent) of `counts`; 0 for one rank.
