@@ -35,5 +35,5 @@ if any(r.get("serial_reference") for r in rows):
         print(f"The last row, a search of seconds, ran {last['speedup']:.2f}x the serial engine on "
               f"{rows[-1]['ranks']} ranks, with workload deviation "
               f"{rows[-1]['distributed']['workload_deviation_percent']:.1f}%.\n"
-              "Two serial searches at once ran 1.4-2.4x one search's speed on the 2-core VMs measured\n"
+              "Two serial searches at once ran 1.3-2.4x one search's speed (medians of rounds) on the 2-core VMs\n"
               "(the machine's own ceiling; docs/PERFORMANCE.md, issue 17).")
