@@ -76,15 +76,15 @@ Action register_grid_command(CLI::App& app) {
       ->capture_default_str()
       ->group(mpi);
   add_number(cmd, "--owner-slabs", d.slab_width,
-             "Ownership by slabs this wide along the first axis, dealt round the ranks, instead "
+             "Ownership by slabs this wide along the last axis, dealt round the ranks, instead "
              "of the hash (0 = hash)",
              0, 1 << 30)
       ->capture_default_str()
       ->group(mpi);
   add_number(cmd, "--owner-cuts", d.prefix_cuts,
-             "Ownership by P - 1 cuts of the states ordered by their first two coordinates "
-             "(position c1 * extent + c2), instead of the hash; --simulate-ranks prints the "
-             "positions that balance the work",
+             "Ownership by P - 1 cuts of the states ordered by their last two coordinates "
+             "(position c_d * extent + c_(d-1)), instead of the hash; --simulate-ranks prints "
+             "the positions that balance the work",
              1, 4294967295.0)
       ->delimiter(',')
       ->group(mpi);

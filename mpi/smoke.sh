@@ -37,7 +37,7 @@ else:
     ok = ok and abs(s["cost"] - d["cost"]) <= 1e-9 * (1 + s["cost"])
 if "--owner-slabs" in case:  # the report names the ownership that ran
     width = int(case.split("--owner-slabs")[1].split()[0])
-    ok = ok and d["distributed"]["ownership"] == {"slabs": {"axis": 0, "width": width}}
+    ok = ok and d["distributed"]["ownership"] == {"slabs": {"axis": d["dims"] - 1, "width": width}}
 print(f"smoke: {'ok  ' if ok else 'FAIL'} {case:50s} serial cost {s['cost']:.4f} hops {s['hops']}"
       f" | 2 ranks ({d['scheme']}) cost {d['cost']:.4f} hops {d['hops']},"
       f" deviation {d['distributed']['workload_deviation_percent']:.2f}%")

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "hpcplan/core/format.hpp"
+#include "hpcplan/partition/ownership.hpp"
 
 namespace hpcplan {
 namespace {
@@ -12,9 +13,10 @@ namespace {
 nlohmann::json distributed_json(const GridReport& r) {
   nlohmann::json d;
   if (!r.prefix_cuts.empty())
-    d["ownership"] = {{"prefix_cuts", {{"axes", {0, 1}}, {"at", r.prefix_cuts}}}};
+    d["ownership"] = {
+        {"prefix_cuts", {{"axes", partition::cut_axes(r.dims)}, {"at", r.prefix_cuts}}}};
   else if (r.slab_width > 0)
-    d["ownership"] = {{"slabs", {{"axis", 0}, {"width", r.slab_width}}}};
+    d["ownership"] = {{"slabs", {{"axis", partition::slab_axis(r.dims)}, {"width", r.slab_width}}}};
   else
     d["ownership"] = {{"hash", "splitmix64"}, {"coarsen_shift", r.coarsen_shift}};
   d["batch"] = r.batch;

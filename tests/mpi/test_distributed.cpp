@@ -304,7 +304,7 @@ TEST(Ownership, SpreadsStatesEvenlyAndCoarseningKeepsCellsTogether) {
                    .holds_neighbourhood(layout.pack<1>(std::vector<int>{5, 6, 7})));
 }
 
-// Slabs: the owner depends on the first coordinate alone, (x / w) mod P, on every key width.
+// Slabs: the owner depends on the last coordinate alone, (x / w) mod P, on every key width.
 template <int W>
 void expect_slab_owners(int dims, int extent) {
   const KeyLayout layout(dims, extent);
@@ -319,21 +319,22 @@ void expect_slab_owners(int dims, int extent) {
         std::vector<int> c(dims);
         for (int& x : c) x = static_cast<int>(rng.next_below(extent));
         const auto s = layout.pack<W>(c);
-        const int owner = (c[0] / width) % ranks;
+        const int x = c[dims - 1];
+        const int owner = (x / width) % ranks;
         ASSERT_EQ(slabs(s), owner) << "dims " << dims << " ranks " << ranks << " width " << width;
         // A state that vouches for its neighbourhood: every state one step away on any axes
-        // (the first axis decides; both steps, clamped to the lattice) has its owner.
+        // (the last axis decides; both steps, clamped to the lattice) has its owner.
         if (!slabs.holds_neighbourhood(s)) continue;
         ++interior;
         for (const int step : {-1, 1}) {
           std::vector<int> t = c;
-          t[0] = std::clamp(c[0] + step, 0, extent - 1);
-          if (dims > 1) t[1] = std::clamp(c[1] - step, 0, extent - 1);
+          t[dims - 1] = std::clamp(x + step, 0, extent - 1);
+          if (dims > 1) t[0] = std::clamp(c[0] - step, 0, extent - 1);
           ASSERT_EQ(slabs(layout.pack<W>(t)), owner)
-              << "dims " << dims << " ranks " << ranks << " width " << width << " x " << c[0];
+              << "dims " << dims << " ranks " << ranks << " width " << width << " x " << x;
         }
       }
-      // Interior first coordinates: those whose two neighbours share their slab's owner.
+      // Interior last coordinates: those whose two neighbours share their slab's owner.
       int expected_interior = 0;
       for (int x = 0; x < extent; ++x) {
         const int o = (x / width) % ranks;
@@ -349,7 +350,7 @@ void expect_slab_owners(int dims, int extent) {
     }
 }
 
-TEST(Ownership, SlabsFollowTheFirstCoordinate) {
+TEST(Ownership, SlabsFollowTheLastCoordinate) {
   expect_slab_owners<1>(6, 11);
   expect_slab_owners<2>(10, 1000);  // 10 bits per axis: two words
   // A coarsening shift given with slabs is ignored, not mixed in.
@@ -405,24 +406,25 @@ TEST(Ownership, PrefixCutsOwnByPositionAndVouchOnlyForInteriorStates) {
     std::vector<int> c(3);
     for (int& x : c) x = static_cast<int>(rng.next_below(10));
     const auto s = layout.pack<1>(c);
-    const auto position = static_cast<std::uint32_t>(c[0] * 10 + c[1]);
+    // The last two axes, the last first.
+    const auto position = static_cast<std::uint32_t>(c[2] * 10 + c[1]);
     const int expected =
         static_cast<int>(std::upper_bound(cuts.begin(), cuts.end(), position) - cuts.begin());
-    ASSERT_EQ(owner(s), expected) << c[0] << "," << c[1];
+    ASSERT_EQ(owner(s), expected) << c[2] << "," << c[1];
     if (!owner.holds_neighbourhood(s)) continue;
     ++interior;
     for (int da = -1; da <= 1; ++da)
       for (int db = -1; db <= 1; ++db) {
         std::vector<int> t = c;
-        t[0] = std::clamp(c[0] + da, 0, 9);
-        t[1] = std::clamp(c[1] + db, 0, 9);
         t[2] = std::clamp(c[2] + da, 0, 9);
-        ASSERT_EQ(owner(layout.pack<1>(t)), expected) << c[0] << "," << c[1];
+        t[1] = std::clamp(c[1] + db, 0, 9);
+        t[0] = std::clamp(c[0] + da, 0, 9);
+        ASSERT_EQ(owner(layout.pack<1>(t)), expected) << c[2] << "," << c[1];
       }
   }
   EXPECT_GT(interior, 1000);
   // Rank 1's single position has no interior state.
-  EXPECT_FALSE(owner.holds_neighbourhood(layout.pack<1>(std::vector<int>{2, 3, 5})));
+  EXPECT_FALSE(owner.holds_neighbourhood(layout.pack<1>(std::vector<int>{5, 3, 2})));
   // One position fewer than ranks, strictly ascending, inside the lattice.
   EXPECT_THROW(partition::Ownership<1>(layout, 3, 0, 0, 10, {5}), std::logic_error);
   EXPECT_THROW(partition::Ownership<1>(layout, 3, 0, 0, 10, {5, 5}), std::logic_error);
@@ -430,10 +432,10 @@ TEST(Ownership, PrefixCutsOwnByPositionAndVouchOnlyForInteriorStates) {
   // A 2D lattice of 60,000^2 states: cuts keep nothing of that size (positions near 2^32).
   const KeyLayout wide(2, 60000);
   const partition::Ownership<1> halves(wide, 2, 0, 0, 60000, {1'800'000'000u});
-  EXPECT_EQ(halves(wide.pack<1>(std::vector<int>{29999, 59999})), 0);
-  EXPECT_EQ(halves(wide.pack<1>(std::vector<int>{30000, 0})), 1);
+  EXPECT_EQ(halves(wide.pack<1>(std::vector<int>{59999, 29999})), 0);
+  EXPECT_EQ(halves(wide.pack<1>(std::vector<int>{0, 30000})), 1);
   EXPECT_EQ(halves(wide.pack<1>(std::vector<int>{59999, 59999})), 1);
-  EXPECT_FALSE(halves.holds_neighbourhood(wide.pack<1>(std::vector<int>{29999, 59999})));
+  EXPECT_FALSE(halves.holds_neighbourhood(wide.pack<1>(std::vector<int>{59999, 29999})));
   EXPECT_TRUE(halves.holds_neighbourhood(wide.pack<1>(std::vector<int>{59999, 59999})));
 }
 

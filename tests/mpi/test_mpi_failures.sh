@@ -29,7 +29,7 @@ echo "ok: one JSON object with per-rank figures"
 timeout 120 mpirun -np 2 --oversubscribe "$bin" grid --dims 4 --owner-cuts 40 --json >"$tmp/out" ||
   fail "2-rank run with --owner-cuts failed"
 python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['status']=='solved'; \
-assert j['distributed']['ownership']=={'prefix_cuts': {'axes': [0, 1], 'at': [40]}}, j['distributed']['ownership']" \
+assert j['distributed']['ownership']=={'prefix_cuts': {'axes': [3, 2], 'at': [40]}}, j['distributed']['ownership']" \
   "$tmp/out" || fail "--owner-cuts: JSON ownership is not the cuts given"
 echo "ok: prefix cuts reported in the JSON"
 

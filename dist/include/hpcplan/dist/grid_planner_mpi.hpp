@@ -12,7 +12,7 @@ struct DistGridOptions {
   // async or bulk_sync for A*, weighted A* and Dijkstra; BFS is always level_sync.
   Scheme scheme = Scheme::async;
   int coarsen_shift = 0;  // ownership hashes coordinates >> k (0 = the state itself)
-  int slab_width = 0;     // > 0: ownership by slabs of this width along the first axis instead
+  int slab_width = 0;     // > 0: ownership by slabs of this width along the last axis instead
   // Non-empty: ownership by prefix cuts instead (partition/ownership.hpp), ranks - 1 positions.
   std::vector<std::uint32_t> prefix_cuts;
   std::size_t batch = 512;

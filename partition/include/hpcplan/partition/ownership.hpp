@@ -6,21 +6,27 @@
 //    2^k states per axis stay on one rank, so fewer moves leave their rank, at the price of
 //    coarser load balance. In 6D a state has 728 neighbours, and most of them differ from it on
 //    several axes, so even k = 2 leaves about half of them elsewhere.
-//  - slabs of width w along the first axis, dealt round the ranks: the owner is
-//    (c1 / w) mod P. Only the moves that cross a slab face leave the rank (6D, extent 11,
-//    w = 6, two ranks: 8 bytes sent per expansion against 244 with the hash), and the owner
-//    is one table look-up.
+//  - slabs of width w along the slab axis (below), dealt round the ranks: the owner is
+//    (a / w) mod P for the state's coordinate a on that axis. Only the moves that cross a slab
+//    face leave the rank (6D, extent 11, w = 6, two ranks: 8 bytes sent per expansion against
+//    244 with the hash), and the owner is one table look-up.
 //    The balance is the slabs': a search that starts in one corner reaches the far slabs late.
-//  - prefix cuts: the states ordered by their first two coordinates, p = c1 * extent + c2,
-//    and cut at P - 1 positions, rank r owning cuts[r-1] <= p < cuts[r]. A contiguous cut
-//    like two slabs (a plane c1 = k with one step in c2), but placed to 1/extent^2 of the
-//    states, so it can split a search's expansions evenly (balanced_prefix_cuts in
-//    rank_simulation.hpp finds the positions from a serial run's expansions).
-//    The owner only grows with the position, so the states between two positions of one owner
-//    are that owner's too.
-//  Slabs and cuts: a state whose 3 x 3 block of (c1, c2) neighbours has one owner keeps its
+//  - prefix cuts: the states ordered by their coordinates on the two cut axes (below),
+//    p = a * extent + b, and cut at P - 1 positions, rank r owning cuts[r-1] <= p < cuts[r].
+//    A contiguous cut like two slabs (a plane a = k with one step in b), but placed to
+//    1/extent^2 of the states, so it can split a search's expansions evenly
+//    (balanced_prefix_cuts in rank_simulation.hpp finds the positions from a serial run's
+//    expansions). The owner only grows with the position, so the states between two positions
+//    of one owner are that owner's too.
+//  The slab axis is the last one, and the cut axes the last two (last first): the packed key
+//  keeps the last axis in its highest bits, so a slab or a cut's side is one contiguous run of
+//  keys, and of a dense store's entries. Along the first axis (the lowest bits) every cache line
+//  of the store held states of both ranks, each rank using part of every line it fetched: at
+//  8D and 10D the ranks reached 73% and 68-72% of the machine's ceiling that way, 90% and 81%
+//  along the last axis (docs/PERFORMANCE.md, issue 17).
+//  Slabs and cuts: a state whose 3 x 3 block of (a, b) neighbours has one owner keeps its
 //  whole unit neighbourhood on its rank (holds_neighbourhood), so its successors need no owner
-//  look-up: most states of a wide slab or a cut's side. Slabs decide it from a table by c1;
+//  look-up: most states of a wide slab or a cut's side. Slabs decide it from a table by a;
 //  cuts from the block's first and last positions. Neither keeps anything of size extent^2.
 #include <algorithm>
 #include <array>
@@ -32,7 +38,16 @@
 
 namespace hpcplan::partition {
 
-// How many positions c1 * extent + c2 a lattice has (extent^2; extent in 1D, where c2 = 0).
+// The axis slabs are cut along, and the two axes whose coordinates (a, b) order the states
+// for prefix cuts (in 1D the second is the first again, and b counts as 0).
+inline int slab_axis(int dims) {
+  return dims - 1;
+}
+inline std::array<int, 2> cut_axes(int dims) {
+  return {dims - 1, dims > 1 ? dims - 2 : 0};
+}
+
+// How many positions a * extent + b a lattice has (extent^2; extent in 1D, where b = 0).
 inline std::uint64_t prefix_positions(int dims, int extent) {
   return static_cast<std::uint64_t>(extent) * static_cast<std::uint64_t>(dims > 1 ? extent : 1);
 }
@@ -49,11 +64,11 @@ class Ownership {
         shift_(slab_width > 0 || !prefix_cuts.empty() ? 0 : coarsen_shift),
         slab_width_(prefix_cuts.empty() ? slab_width : 0),
         prefix_cuts_(prefix_cuts),
-        first_word_(layout.word_of(0)),
-        first_shift_(layout.shift_of(0)),
+        first_word_(layout.word_of(cut_axes(layout.dims())[0])),
+        first_shift_(layout.shift_of(cut_axes(layout.dims())[0])),
         first_mask_(layout.mask()),
-        second_word_(layout.word_of(layout.dims() > 1 ? 1 : 0)),
-        second_shift_(layout.shift_of(layout.dims() > 1 ? 1 : 0)),
+        second_word_(layout.word_of(cut_axes(layout.dims())[1])),
+        second_shift_(layout.shift_of(cut_axes(layout.dims())[1])),
         second_mask_(layout.dims() > 1 ? layout.mask() : 0),
         extent_(extent),
         second_extent_(layout.dims() > 1 ? extent : 1) {
@@ -82,14 +97,14 @@ class Ownership {
     if (prefix_cuts_.empty()) return false;
     // The block's positions all lie between its first and last one (clamped to the lattice),
     // and the owner only grows with the position.
-    const std::uint32_t c1 = first(s), c2 = second(s);
+    const std::uint32_t a = first(s), b = second(s);
     const std::uint32_t e2 = static_cast<std::uint32_t>(second_extent_);
-    const std::uint32_t lo = (c1 > 0 ? c1 - 1 : 0) * e2 + (c2 > 0 ? c2 - 1 : 0);
+    const std::uint32_t lo = (a > 0 ? a - 1 : 0) * e2 + (b > 0 ? b - 1 : 0);
     const std::uint32_t hi =
-        std::min(c1 + 1, static_cast<std::uint32_t>(extent_) - 1) * e2 + std::min(c2 + 1, e2 - 1);
+        std::min(a + 1, static_cast<std::uint32_t>(extent_) - 1) * e2 + std::min(b + 1, e2 - 1);
     return owner_at(lo) == owner_at(hi);
   }
-  // s's position c1 * extent + c2 (needs the extent given at construction).
+  // s's position a * extent + b on the cut axes (needs the extent given at construction).
   std::uint32_t position(const PackedKey<W>& s) const {
     return first(s) * static_cast<std::uint32_t>(second_extent_) + second(s);
   }
@@ -108,6 +123,7 @@ class Ownership {
   const std::vector<std::uint32_t>& prefix_cuts() const { return prefix_cuts_; }
 
  private:
+  // The coordinates on the cut axes: a (also the slab axis) and b.
   std::uint32_t first(const PackedKey<W>& s) const {
     return static_cast<std::uint32_t>((s.w[first_word_] >> first_shift_) & first_mask_);
   }
@@ -147,9 +163,9 @@ class Ownership {
   int second_word_, second_shift_;
   std::uint64_t second_mask_;
   int extent_;
-  int second_extent_;                // extent, or 1 in 1D (c2 = 0)
-  std::vector<int> slab_owner_;      // by first coordinate
-  std::vector<char> slab_interior_;  // by first coordinate: it and both neighbours one owner's
+  int second_extent_;                // extent, or 1 in 1D (b = 0)
+  std::vector<int> slab_owner_;      // by the coordinate on the slab axis
+  std::vector<char> slab_interior_;  // by that coordinate: it and both neighbours one owner's
   std::array<std::uint64_t, W> mask_{};
 };
 

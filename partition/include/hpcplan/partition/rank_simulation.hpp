@@ -35,7 +35,8 @@ struct SimulatedSplit {
 struct RankSimulation {
   GridReport serial;  // the search that was observed
   std::vector<SimulatedSplit> splits;
-  // The serial expansions by prefix position c1 * extent + c2 (Ownership's prefix cuts):
+  // The serial expansions by prefix position (Ownership::position, a * extent + b on the cut
+  // axes):
   // the work model that balanced_prefix_cuts splits. Empty for lattices of more than
   // kMaxCensusPositions positions (extent > 2048 from 2D up), whose table would not fit.
   std::vector<std::uint64_t> expanded_by_prefix;

@@ -37,7 +37,7 @@ struct GridReport : Result<std::vector<int>> {
   // Distributed runs: how states were spread and exchanged.
   std::string scheme = "serial";  // serial | async | bulk_sync | level_sync
   int coarsen_shift = 0;
-  int slab_width = 0;  // > 0: ownership by slabs of this width along the first axis
+  int slab_width = 0;  // > 0: ownership by slabs of this width along the last axis
   std::vector<std::uint32_t> prefix_cuts;  // non-empty: ownership by prefix cuts
   std::uint64_t batch = 0;
   double batch_age_ms = 0.0;
