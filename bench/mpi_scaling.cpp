@@ -6,7 +6,8 @@
 //     --coarsen and --sent-filters (a slab ownership, width > 0, runs with no coarsening),
 //     and with --balanced-cuts once more per mode, batch and filter with prefix cuts placed
 //     where a serial run's expansions split evenly (found before the rounds, on rank 0, by the
-//     rank simulation's census: calibration, not counted in any time);
+//     rank simulation's census: calibration, not counted in any time), and once with the
+//     prefix cuts of --cuts; given only cuts (no --slabs, no --coarsen), no hash runs;
 //   - with --ceiling, the serial search on every rank at once (scheme "ceiling": the speedup
 //     the machine itself allows P copies of this memory-bound work).
 // Interleaving matters on a noisy machine: the speed of a shared VM drifts by 10-25% over a
@@ -16,8 +17,11 @@
 // CSV row per configuration (rank 0; appended to --csv, or stdout).
 // The spread: the lowest and highest per-round speedups. With --ceiling, each round also
 // yields the ceiling of that round and the distributed speedup as a fraction of it; the row
-// reports that fraction's median, lowest and highest, so a drifting machine shows as spread
-// instead of moving the median unseen.
+// reports that fraction's median, quartiles, lowest and highest, so a drifting machine shows
+// as spread instead of moving the median unseen. That fraction is the crowded time over P
+// times the distributed time (the solo serial run cancels out), so the crowded run sits next
+// to the distributed ones: last in rounds that start with the serial run, first in the others.
+// serial_min_ms and serial_max_ms show how far the machine's own speed moved within the job.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -48,6 +52,13 @@ double lowest(const std::vector<double>& v) {
 double highest(const std::vector<double>& v) {
   return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
 }
+// The q-quantile by the nearest rank (q = 0.25, 0.75: the quartiles).
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const auto i = static_cast<std::size_t>(std::lround(q * static_cast<double>(v.size() - 1)));
+  return v[i];
+}
 
 }  // namespace
 
@@ -70,6 +81,7 @@ int main(int argc, char** argv) {
   bool no_serial = false;
   bool ceiling = false;
   bool balanced_cuts = false;
+  std::vector<std::uint32_t> fixed_cuts;
   std::string csv;
   app.add_option("--dims", p.dims)->required();
   app.add_option("--extent", p.extent);
@@ -81,7 +93,7 @@ int main(int argc, char** argv) {
   app.add_option("--batches", batches)->delimiter(',');
   app.add_option("--coarsen", coarsen)->delimiter(',');
   app.add_option("--slabs", slabs,
-                 "Slab widths along the first axis (0 = hash ownership); each runs with "
+                 "Slab widths along the last axis (0 = hash ownership); each runs with "
                  "coarsening 0")
       ->delimiter(',');
   app.add_option("--sent-filters", filters, "log2 slots of the sent-duplicate filter")
@@ -94,6 +106,10 @@ int main(int argc, char** argv) {
   app.add_flag("--balanced-cuts", balanced_cuts,
                "Also run prefix-cut ownership balanced on a serial run's expansions (calibration "
                "before the rounds, untimed)");
+  app.add_option(
+         "--cuts", fixed_cuts,
+         "Also run prefix-cut ownership with these P - 1 positions (c_d * extent + c_(d-1))")
+      ->delimiter(',');
   app.add_option("--csv", csv, "Append rows to this CSV file (header when new)");
   try {
     app.parse(argc, argv);
@@ -110,9 +126,13 @@ int main(int argc, char** argv) {
       std::vector<std::uint32_t> cuts;
     };
     std::vector<Owner> owners;
+    const bool cuts_only = (balanced_cuts || !fixed_cuts.empty()) && app.count("--slabs") == 0 &&
+                           app.count("--coarsen") == 0;
     for (int w : slabs)
       for (int k : coarsen)
-        if (w == 0 || k == 0) owners.push_back({w, k, {}});  // slabs replace the hash
+        if ((w == 0 || k == 0) && !cuts_only)
+          owners.push_back({w, k, {}});  // slabs replace the hash
+    if (!fixed_cuts.empty()) owners.push_back({0, 0, fixed_cuts});
     if (balanced_cuts && comm.size() > 1) {
       std::vector<std::uint32_t> cuts(static_cast<std::size_t>(comm.size() - 1));
       if (root) {
@@ -157,26 +177,31 @@ int main(int argc, char** argv) {
     // the same time. P times the solo time over this time is the best any distribution of
     // this memory-bound work could reach here (shared caches, memory bandwidth, a VM's
     // neighbours), before any communication.
-    std::vector<double> crowd_ratio;
+    std::vector<double> crowd_t;
     auto time_crowded = [&] {
       if (no_serial || !ceiling) return;
       comm.quiet_barrier();
       const double t = solve_grid(p, o).counters.time_ms;
       const double slowest = comm.allreduce_max(t);
-      if (root) crowd_ratio.push_back(comm.size() * serial_t.back() / slowest);
+      if (root) crowd_t.push_back(slowest);
     };
+    std::vector<double> crowd_ratio;
     std::optional<Progress> progress;
     if (root) progress.emplace("hpcplan_mpi_scaling", static_cast<std::size_t>(repeats));
     for (int r = 0; r < repeats; ++r) {
       // Alternate the order: whichever runs second finds the allocator and caches warmed.
+      // The crowded run stays next to the distributed ones (see the top).
       const bool serial_first = r % 2 == 0;
       if (serial_first) time_serial();
+      if (!serial_first) time_crowded();
       for (std::size_t c = 0; c < configs.size(); ++c) {
         last[c] = dist::solve_grid_distributed(p, o, configs[c], comm);
         dist_t[c].push_back(last[c].counters.time_ms);
       }
+      if (serial_first) time_crowded();
       if (!serial_first) time_serial();
-      time_crowded();
+      if (root && !crowd_t.empty())
+        crowd_ratio.push_back(comm.size() * serial_t.back() / crowd_t.back());
       if (!no_serial && root)
         for (std::size_t c = 0; c < configs.size(); ++c) {
           ratio[c].push_back(serial_t.back() / dist_t[c].back());
@@ -208,7 +233,7 @@ int main(int argc, char** argv) {
       std::snprintf(
           line, sizeof line,
           "%s,%d,%d,%d,%.2f,%s,%s,%zu,%d,%d,%d,%s,%.6f,%llu,%llu,%.3f,%.3f,%.3f,%.3f,"
-          "%.3f,%.5f,%.2f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%s\n",
+          "%.3f,%.5f,%.2f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%s,%.3f,%.3f,%.3f,%.3f\n",
           label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
           g.scheme.c_str(), configs[c].batch, configs[c].coarsen_shift, configs[c].sent_filter_log2,
           repeats, std::string(search::to_string(g.status)).c_str(), g.cost,
@@ -218,7 +243,8 @@ int main(int argc, char** argv) {
           bytes / ex, workload_deviation_percent(g.per_rank),
           serial_expanded ? ex / static_cast<double>(serial_expanded) : 0.0, lowest(ratio[c]),
           highest(ratio[c]), median(of_ceiling[c]), lowest(of_ceiling[c]), highest(of_ceiling[c]),
-          configs[c].slab_width, cuts.c_str());
+          configs[c].slab_width, cuts.c_str(), quantile(of_ceiling[c], 0.25),
+          quantile(of_ceiling[c], 0.75), lowest(serial_t), highest(serial_t));
       rows << line;
       std::fputs(line, stderr);
     }
@@ -226,13 +252,13 @@ int main(int argc, char** argv) {
       char line[512];
       std::snprintf(line, sizeof line,
                     "%s,%d,%d,%d,%.2f,%s,ceiling,0,0,0,%d,solved,%.6f,%llu,%llu,%.3f,%.3f,%.3f,"
-                    "%.3f,%.3f,0,0,0,1,%.3f,%.3f,1,1,1,0,\n",
+                    "%.3f,%.3f,0,0,0,1,%.3f,%.3f,1,1,1,0,,1,1,%.3f,%.3f\n",
                     label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
                     repeats, serial_cost, static_cast<unsigned long long>(serial_expanded),
                     static_cast<unsigned long long>(serial_expanded), serial_ms,
                     serial_ms * comm.size() / median(crowd_ratio), median(crowd_ratio),
                     median(crowd_ratio), median(crowd_ratio) / comm.size(), lowest(crowd_ratio),
-                    highest(crowd_ratio));
+                    highest(crowd_ratio), lowest(serial_t), highest(serial_t));
       rows << line;
       std::fputs(line, stderr);
     }
@@ -243,7 +269,7 @@ int main(int argc, char** argv) {
           "speedup_vs_serial,efficiency,"
           "messages_per_expansion,bytes_per_expansion,workload_deviation_percent,"
           "search_overhead,speedup_min,speedup_max,of_ceiling,of_ceiling_min,of_ceiling_max,"
-          "slabs,cuts\n";
+          "slabs,cuts,of_ceiling_q1,of_ceiling_q3,serial_min_ms,serial_max_ms\n";
       if (csv.empty()) {
         std::fputs(header, stdout);
         std::fputs(rows.str().c_str(), stdout);
@@ -258,8 +284,9 @@ int main(int argc, char** argv) {
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "hpcplan_mpi_scaling: error: %s\n", e.what());
-    if (comm.size() > 1) comm.abort(1);
-    return 1;
+    const int code = dynamic_cast<const InputError*>(&e) != nullptr ? 2 : 1;
+    if (comm.size() > 1) comm.abort(code);
+    return code;
   }
   return 0;
 }

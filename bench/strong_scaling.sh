@@ -5,12 +5,16 @@
 # asynchronous vs bulk-synchronous, the machine's own ceiling (the serial search on both cores
 # at once), and the effect of the batch size at 6D. Every row is timed against the serial
 # engine in the same mpirun job, interleaved round by round (median of --repeats ratios, with
-# their lowest and highest, and the fraction of the ceiling measured in the same rounds). Writes
+# their lowest and highest, and the fraction of the ceiling measured in the same rounds). Then
+# each problem's best scheme runs again alone, in more rounds (label "confirm dD"), so its
+# fraction of the ceiling comes with quartiles from runs next to the crowded ones, and the
+# serial engine's spread shows how far the machine's speed moved. Writes
 # results/strong_scaling.csv and prints a Markdown summary.
-# Usage: bash bench/strong_scaling.sh [repeats]
+# Usage: bash bench/strong_scaling.sh [repeats [confirmation rounds, default 3 x repeats]]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repeats=${1:-5}
+confirm_repeats=${2:-$((3 * repeats))}
 bin=build/bin/hpcplan_mpi_scaling
 [[ -x $bin ]] || { echo "strong_scaling: build first (bash scripts/build.sh)" >&2; exit 2; }
 if [[ $(id -u) -eq 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
@@ -32,5 +36,13 @@ done
 # Batch size (async) at 6D.
 mpirun -np 2 "$bin" --dims 6 --extent 11 --algo dijkstra --repeats "$repeats" --modes async \
   --batches 16,128,2048,16384 --label batch --csv "$csv" 2>/dev/null
+# The best scheme of each problem, confirmed.
+for pr in "${problems[@]}"; do
+  set -- $pr
+  # shellcheck disable=SC2046  # the options are words
+  mpirun -np 2 "$bin" --dims "$1" --extent "$2" --algo dijkstra --repeats "$confirm_repeats" \
+    $(python3 scripts/scaling_table.py --best-args "$csv" "d$1") --ceiling --label "confirm d$1" \
+    --csv "$csv" 2>/dev/null
+done
 mv "$csv" results/strong_scaling.csv
 python3 scripts/scaling_table.py results/strong_scaling.csv

@@ -1,14 +1,52 @@
 #!/usr/bin/env python3
-"""Prints the rows of a hpcplan_mpi_scaling CSV as a Markdown table."""
+"""Prints the rows of a hpcplan_mpi_scaling CSV as a Markdown table, the best scheme per
+problem against the machine's ceiling, and the confirmation rounds (labels "confirm ...").
+
+  scaling_table.py CSV                  the tables
+  scaling_table.py --best-args CSV LBL  hpcplan_mpi_scaling options that rerun the best
+                                        scheme of problem LBL (by its median fraction of
+                                        the ceiling), for bench/strong_scaling.sh
+"""
 import csv
 import sys
+
+
+def best_rows(rows):
+    """The row with the highest median fraction of the ceiling per (label, ranks)."""
+    best = {}
+    for r in rows:
+        if r.get("scheme") in ("ceiling", "serial") or not r.get("of_ceiling"):
+            continue
+        key = (r["label"], r["ranks"])
+        if float(r["of_ceiling"]) > 0 and (key not in best or
+                                           float(r["of_ceiling"]) > float(best[key]["of_ceiling"])):
+            best[key] = r
+    return best
+
+
+def owner_args(r):
+    if r.get("cuts"):
+        return ["--cuts", r["cuts"].replace(";", ",")]
+    if r.get("slabs", "0") not in ("", "0"):
+        return ["--slabs", r["slabs"]]
+    return ["--coarsen", r["coarsen"]]
+
+
+if sys.argv[1] == "--best-args":
+    rows = list(csv.DictReader(open(sys.argv[2])))
+    for (label, _), r in best_rows(rows).items():
+        if label == sys.argv[3]:
+            print(" ".join(["--modes", r["scheme"], "--batches", r["batch"]] + owner_args(r)))
+            sys.exit(0)
+    sys.exit(f"scaling_table: no best row for {sys.argv[3]}")
 
 rows = list(csv.DictReader(open(sys.argv[1])))
 cols = ["label", "ranks", "dims", "extent", "scheme", "batch", "coarsen", "sent_filter", "status", "expanded",
         "serial_median_ms", "median_ms", "ratio_of_medians", "speedup_vs_serial", "efficiency",
         "messages_per_expansion", "bytes_per_expansion", "workload_deviation_percent",
         "search_overhead", "speedup_min", "speedup_max", "of_ceiling", "of_ceiling_min",
-        "of_ceiling_max", "slabs", "cuts"]
+        "of_ceiling_max", "slabs", "cuts", "of_ceiling_q1", "of_ceiling_q3", "serial_min_ms",
+        "serial_max_ms"]
 # Older CSVs lack the spread, slab and cut columns.
 cols = [c for c in cols if all(c in r for r in rows)]
 print("| " + " | ".join(cols) + " |")
@@ -17,14 +55,9 @@ for r in rows:
     print("| " + " | ".join(r[c] for c in cols) + " |")
 
 # The best scheme per problem against the machine's ceiling measured in the same rounds.
-best = {}
-for r in rows:
-    if r.get("scheme") in ("ceiling", "serial") or not r.get("of_ceiling"):
-        continue
-    key = (r["label"], r["ranks"])
-    if float(r["of_ceiling"]) > 0 and (key not in best or
-                                       float(r["of_ceiling"]) > float(best[key]["of_ceiling"])):
-        best[key] = r
+sweep = [r for r in rows if not r["label"].startswith("confirm")]
+confirm = [r for r in rows if r["label"].startswith("confirm")]
+best = best_rows(sweep)
 if best:
     print()
     print("| problem | P | best scheme | speedup (min-max) | ceiling | of ceiling, median (min-max) |")
@@ -43,3 +76,29 @@ if best:
               f"{r['speedup_vs_serial']} ({r['speedup_min']}-{r['speedup_max']}) | {cell} | "
               f"{float(r['of_ceiling']):.1%} ({float(r['of_ceiling_min']):.1%}-"
               f"{float(r['of_ceiling_max']):.1%}) |")
+
+# The confirmation: each problem's best scheme alone against the serial engine and the
+# ceiling, in more rounds. The quartiles say how steady the fraction is; the serial engine's
+# own lowest and highest time say how far this machine's speed moved meanwhile.
+if confirm:
+    print()
+    print("| problem | P | scheme | rounds | speedup, median (min-max) | ceiling, median (min-max) "
+          "| of ceiling, median (quartiles; min-max) | serial ms, min-max |")
+    print("|---|---|---|---|---|---|---|---|")
+    # Each job writes its configurations and then its ceiling row.
+    waiting = []
+    for r in confirm:
+        if r.get("scheme") != "ceiling":
+            waiting.append(r)
+            continue
+        c = r
+        for r in waiting:
+            frac = (f"{float(r['of_ceiling']):.1%} ({float(r['of_ceiling_q1']):.1%}-"
+                    f"{float(r['of_ceiling_q3']):.1%}; {float(r['of_ceiling_min']):.1%}-"
+                    f"{float(r['of_ceiling_max']):.1%})")
+            print(f"| {r['label'].removeprefix('confirm ')} | {r['ranks']} | {r['scheme']} "
+                  f"{' '.join(owner_args(r))[2:]} | {r['repeats']} | {r['speedup_vs_serial']} "
+                  f"({r['speedup_min']}-{r['speedup_max']}) | {c['speedup_vs_serial']} "
+                  f"({c['speedup_min']}-{c['speedup_max']}) | {frac} | "
+                  f"{float(r['serial_min_ms']):.0f}-{float(r['serial_max_ms']):.0f} |")
+        waiting = []
