@@ -32,6 +32,11 @@ def owner_args(r):
     return ["--coarsen", r["coarsen"]]
 
 
+def owner_name(r):
+    """The ownership in words: "slabs 6", "cuts 53", "coarsen 1"."""
+    return " ".join(owner_args(r))[2:]
+
+
 if sys.argv[1] == "--best-args":
     rows = list(csv.DictReader(open(sys.argv[2])))
     for (label, _), r in best_rows(rows).items():
@@ -66,13 +71,7 @@ if best:
     for key, r in best.items():
         c = ceilings.get(key)
         cell = f"{c['speedup_vs_serial']} ({c['speedup_min']}-{c['speedup_max']})" if c else "-"
-        if r.get("cuts"):
-            owner = f"cuts={r['cuts']}"
-        elif r.get("slabs", "0") not in ("", "0"):
-            owner = f"slabs={r['slabs']}"
-        else:
-            owner = f"k={r['coarsen']}"
-        print(f"| {key[0]} | {key[1]} | {r['scheme']} {owner} batch={r['batch']} | "
+        print(f"| {key[0]} | {key[1]} | {r['scheme']} {owner_name(r)} batch={r['batch']} | "
               f"{r['speedup_vs_serial']} ({r['speedup_min']}-{r['speedup_max']}) | {cell} | "
               f"{float(r['of_ceiling']):.1%} ({float(r['of_ceiling_min']):.1%}-"
               f"{float(r['of_ceiling_max']):.1%}) |")
@@ -97,7 +96,7 @@ if confirm:
                     f"{float(r['of_ceiling_q3']):.1%}; {float(r['of_ceiling_min']):.1%}-"
                     f"{float(r['of_ceiling_max']):.1%})")
             print(f"| {r['label'].removeprefix('confirm ')} | {r['ranks']} | {r['scheme']} "
-                  f"{' '.join(owner_args(r))[2:]} | {r['repeats']} | {r['speedup_vs_serial']} "
+                  f"{owner_name(r)} | {r['repeats']} | {r['speedup_vs_serial']} "
                   f"({r['speedup_min']}-{r['speedup_max']}) | {c['speedup_vs_serial']} "
                   f"({c['speedup_min']}-{c['speedup_max']}) | {frac} | "
                   f"{float(r['serial_min_ms']):.0f}-{float(r['serial_max_ms']):.0f} |")
