@@ -120,7 +120,7 @@ int main(int argc, char** argv) {
   try {
     o.algorithm = parse_grid_algorithm(algo);
     // The ownerships to time: each slab width with no coarsening, each coarsening with the
-    // hash, and the balanced cuts.
+    // hash, the cuts given and the balanced cuts.
     struct Owner {
       int slabs = 0, coarsen = 0;
       std::vector<std::uint32_t> cuts;

@@ -76,8 +76,8 @@ if best:
               f"{float(r['of_ceiling']):.1%} ({float(r['of_ceiling_min']):.1%}-"
               f"{float(r['of_ceiling_max']):.1%}) |")
 
-# The confirmation: each problem's best scheme alone against the serial engine and the
-# ceiling, in more rounds. The quartiles say how steady the fraction is; the serial engine's
+# The confirmation: each problem's best scheme (and the balanced cuts beside it) against the
+# serial engine and the ceiling, in more rounds. The quartiles say how steady the fraction is; the serial engine's
 # own lowest and highest time say how far this machine's speed moved meanwhile.
 if confirm:
     print()
@@ -86,11 +86,11 @@ if confirm:
     print("|---|---|---|---|---|---|---|---|")
     # Each job writes its configurations and then its ceiling row.
     waiting = []
-    for r in confirm:
-        if r.get("scheme") != "ceiling":
-            waiting.append(r)
+    for row in confirm:
+        if row.get("scheme") != "ceiling":
+            waiting.append(row)
             continue
-        c = r
+        c = row
         for r in waiting:
             frac = (f"{float(r['of_ceiling']):.1%} ({float(r['of_ceiling_q1']):.1%}-"
                     f"{float(r['of_ceiling_q3']):.1%}; {float(r['of_ceiling_min']):.1%}-"

@@ -44,13 +44,12 @@ void validate(const DistGridOptions& o, int extent, int ranks, int dims) {
     if (o.slab_width > 0 || o.coarsen_shift > 0)
       throw InputError("--owner-cuts replaces --owner-slabs and --owner-coarsen: give one");
     const std::uint64_t positions = extent > 0 ? partition::prefix_positions(dims, extent) : ~0ULL;
-    for (std::size_t j = 0; j < o.prefix_cuts.size(); ++j)
-      if (o.prefix_cuts[j] < 1 || o.prefix_cuts[j] >= positions ||
-          (j > 0 && o.prefix_cuts[j] <= o.prefix_cuts[j - 1]))
-        throw InputError(
-            "--owner-cuts must ascend strictly within 1.." +
-            (extent > 0 ? std::to_string(positions - 1) : std::string("extent^2 - 1")) + ", got " +
-            std::to_string(o.prefix_cuts[j]) + " at position " + std::to_string(j + 1));
+    if (const std::size_t j = partition::first_misplaced_cut(o.prefix_cuts, positions);
+        j != o.prefix_cuts.size())
+      throw InputError("--owner-cuts must ascend strictly within 1.." +
+                       (extent > 0 ? std::to_string(positions - 1) : std::string("extent^2 - 1")) +
+                       ", got " + std::to_string(o.prefix_cuts[j]) + " at position " +
+                       std::to_string(j + 1));
     if (ranks > 0 && o.prefix_cuts.size() != static_cast<std::size_t>(ranks - 1))
       throw InputError("--owner-cuts needs P - 1 positions for P ranks: " + std::to_string(ranks) +
                        " need " + std::to_string(ranks - 1) + ", got " +

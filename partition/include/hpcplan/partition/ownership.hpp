@@ -22,8 +22,8 @@
 //  keeps the last axis in its highest bits, so a slab or a cut's side is one contiguous run of
 //  keys, and of a dense store's entries. Along the first axis (the lowest bits) every cache line
 //  of the store held states of both ranks, each rank using part of every line it fetched: at
-//  8D and 10D the ranks reached 73% and 68-72% of the machine's ceiling that way, 90% and 81%
-//  along the last axis (docs/PERFORMANCE.md, issue 17).
+//  8D and 10D the ranks reached 78% and 68-72% of the machine's ceiling that way, 90% and 81%
+//  along the last axis, in alternated jobs (docs/PERFORMANCE.md, issue 17).
 //  Slabs and cuts: a state whose 3 x 3 block of (a, b) neighbours has one owner keeps its
 //  whole unit neighbourhood on its rank (holds_neighbourhood), so its successors need no owner
 //  look-up: most states of a wide slab or a cut's side. Slabs decide it from a table by a;
@@ -50,6 +50,15 @@ inline std::array<int, 2> cut_axes(int dims) {
 // How many positions a * extent + b a lattice has (extent^2; extent in 1D, where b = 0).
 inline std::uint64_t prefix_positions(int dims, int extent) {
   return static_cast<std::uint64_t>(extent) * static_cast<std::uint64_t>(dims > 1 ? extent : 1);
+}
+
+// The index of the first cut that is not strictly above the one before it and inside
+// 1..positions - 1, or the number of cuts when all are (so every rank owns some position).
+inline std::size_t first_misplaced_cut(const std::vector<std::uint32_t>& cuts,
+                                       std::uint64_t positions) {
+  for (std::size_t j = 0; j < cuts.size(); ++j)
+    if (cuts[j] < 1 || cuts[j] >= positions || (j > 0 && cuts[j] <= cuts[j - 1])) return j;
+  return cuts.size();
 }
 
 template <int W>
@@ -148,10 +157,8 @@ class Ownership {
     if (static_cast<int>(prefix_cuts_.size()) != ranks_ - 1)
       throw std::logic_error("Ownership: prefix cuts need one position fewer than ranks");
     const std::uint64_t n = static_cast<std::uint64_t>(extent_) * second_extent_;
-    for (std::size_t j = 0; j < prefix_cuts_.size(); ++j)
-      if (prefix_cuts_[j] < 1 || prefix_cuts_[j] >= n ||
-          (j > 0 && prefix_cuts_[j] <= prefix_cuts_[j - 1]))
-        throw std::logic_error("Ownership: prefix cuts must ascend strictly inside the lattice");
+    if (first_misplaced_cut(prefix_cuts_, n) != prefix_cuts_.size())
+      throw std::logic_error("Ownership: prefix cuts must ascend strictly inside the lattice");
   }
 
   int ranks_;

@@ -36,8 +36,7 @@ struct RankSimulation {
   GridReport serial;  // the search that was observed
   std::vector<SimulatedSplit> splits;
   // The serial expansions by prefix position (Ownership::position, a * extent + b on the cut
-  // axes):
-  // the work model that balanced_prefix_cuts splits. Empty for lattices of more than
+  // axes): the work model that balanced_prefix_cuts splits. Empty for lattices of more than
   // kMaxCensusPositions positions (extent > 2048 from 2D up), whose table would not fit.
   std::vector<std::uint64_t> expanded_by_prefix;
   static constexpr std::uint64_t kMaxCensusPositions = std::uint64_t{1} << 22;
