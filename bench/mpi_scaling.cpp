@@ -32,7 +32,7 @@
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/progress.hpp"
-#include "hpcplan/dist/grid_planner_mpi.hpp"
+#include "hpcplan/distributed/grid_planner_mpi.hpp"
 #include "hpcplan/mpi/communicator.hpp"
 #include "hpcplan/partition/rank_simulation.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
   std::vector<std::size_t> batches{512};
   std::vector<int> coarsen{0};
   std::vector<int> slabs{0};
-  std::vector<int> filters{dist::DistGridOptions{}.sent_filter_log2};
+  std::vector<int> filters{distributed::DistGridOptions{}.sent_filter_log2};
   int repeats = 3;
   bool no_serial = false;
   bool ceiling = false;
@@ -142,19 +142,19 @@ int main(int argc, char** argv) {
       comm.broadcast(cuts.data(), static_cast<int>(cuts.size() * sizeof(std::uint32_t)), 0);
       owners.push_back({0, 0, cuts});
     }
-    std::vector<dist::DistGridOptions> configs;
+    std::vector<distributed::DistGridOptions> configs;
     for (const auto& mode : modes)
       for (std::size_t batch : batches)
         for (const Owner& owner : owners)
           for (int f : filters) {
-            dist::DistGridOptions d;
-            d.scheme = dist::parse_scheme(mode);
+            distributed::DistGridOptions d;
+            d.scheme = distributed::parse_scheme(mode);
             d.batch = batch;
             d.coarsen_shift = owner.coarsen;
             d.slab_width = owner.slabs;
             d.prefix_cuts = owner.cuts;
             d.sent_filter_log2 = f;
-            dist::validate(d, p.extent, comm.size(), p.dims);
+            distributed::validate(d, p.extent, comm.size(), p.dims);
             configs.push_back(d);
           }
     std::vector<double> serial_t;
@@ -195,7 +195,7 @@ int main(int argc, char** argv) {
       if (serial_first) time_serial();
       if (!serial_first) time_crowded();
       for (std::size_t c = 0; c < configs.size(); ++c) {
-        last[c] = dist::solve_grid_distributed(p, o, configs[c], comm);
+        last[c] = distributed::solve_grid_distributed(p, o, configs[c], comm);
         dist_t[c].push_back(last[c].counters.time_ms);
       }
       if (serial_first) time_crowded();

@@ -8,7 +8,7 @@
 #include "commands.hpp"
 #include "hpcplan/core/atomic_file.hpp"
 #include "hpcplan/core/error.hpp"
-#include "hpcplan/dist/grid_planner_mpi.hpp"
+#include "hpcplan/distributed/grid_planner_mpi.hpp"
 #include "hpcplan/io/grid_report_json.hpp"
 #include "hpcplan/io/rank_simulation_json.hpp"
 #include "hpcplan/partition/rank_simulation.hpp"
@@ -27,7 +27,7 @@ struct GridArgs {
   std::string start, goal, output;
   double weight = 2.0;
   bool json = false;
-  dist::DistGridOptions dist;
+  distributed::DistGridOptions dist;
   std::string mode = "async";
   bool no_jump_points = false;
   std::vector<int> simulate_ranks;
@@ -130,8 +130,8 @@ Action register_grid_command(CLI::App& app) {
     if (!a.start.empty()) a.problem.start = parse_coordinates(a.start, "--start");
     if (!a.goal.empty()) a.problem.goal = parse_coordinates(a.goal, "--goal");
 
-    a.dist.scheme = dist::parse_scheme(a.mode);
-    dist::validate(a.dist, a.problem.extent, context.comm ? context.comm->size() : 1,
+    a.dist.scheme = distributed::parse_scheme(a.mode);
+    distributed::validate(a.dist, a.problem.extent, context.comm ? context.comm->size() : 1,
                    a.problem.dims);
     if (!a.output.empty()) require_writable_destination(a.output, "--output");
 
@@ -153,7 +153,7 @@ Action register_grid_command(CLI::App& app) {
       return kExitOk;
     }
     const GridReport report =
-        context.comm ? dist::solve_grid_distributed(a.problem, a.options, a.dist, *context.comm)
+        context.comm ? distributed::solve_grid_distributed(a.problem, a.options, a.dist, *context.comm)
                      : solve_grid(a.problem, a.options);
     if (!context.is_root()) return kExitOk;
     const std::string json = to_json(report, a.options.keep_path).dump() + "\n";

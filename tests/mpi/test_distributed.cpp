@@ -14,7 +14,7 @@
 #include <map>
 
 #include "hpcplan/core/splitmix64.hpp"
-#include "hpcplan/dist/grid_planner_mpi.hpp"
+#include "hpcplan/distributed/grid_planner_mpi.hpp"
 #include "hpcplan/mpi/communicator.hpp"
 #include "hpcplan/partition/ownership.hpp"
 #include "hpcplan/partition/rank_simulation.hpp"
@@ -66,7 +66,7 @@ int extent_for(int d) {
 
 struct Config {
   const char* algo;
-  dist::Scheme scheme;
+  distributed::Scheme scheme;
   int coarsen;
   int slabs = 0;      // slab width; 0 = hash ownership
   bool cuts = false;  // prefix cuts spaced evenly over the positions (one per extra rank)
@@ -82,27 +82,27 @@ std::vector<std::uint32_t> even_cuts(int extent, int ranks) {
 
 TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
   const Config configs[] = {
-      {"astar", dist::Scheme::async, 0},
-      {"astar", dist::Scheme::bulk_sync, 0},
-      {"astar", dist::Scheme::async, 1},
-      {"dijkstra", dist::Scheme::async, 0},
-      {"dijkstra", dist::Scheme::bulk_sync, 1},
-      {"wastar", dist::Scheme::async, 0},
-      {"wastar", dist::Scheme::bulk_sync, 0},
-      {"bfs", dist::Scheme::level_sync, 0},
-      {"bfs", dist::Scheme::level_sync, 1},
+      {"astar", distributed::Scheme::async, 0},
+      {"astar", distributed::Scheme::bulk_sync, 0},
+      {"astar", distributed::Scheme::async, 1},
+      {"dijkstra", distributed::Scheme::async, 0},
+      {"dijkstra", distributed::Scheme::bulk_sync, 1},
+      {"wastar", distributed::Scheme::async, 0},
+      {"wastar", distributed::Scheme::bulk_sync, 0},
+      {"bfs", distributed::Scheme::level_sync, 0},
+      {"bfs", distributed::Scheme::level_sync, 1},
       // Slabs of width 1 (every layer changes owner: most traffic) and 2 (dealt round the
       // ranks, so at 8 ranks some own nothing on the smaller extents).
-      {"astar", dist::Scheme::async, 0, 2},
-      {"dijkstra", dist::Scheme::bulk_sync, 0, 1},
-      {"wastar", dist::Scheme::async, 0, 1},
-      {"bfs", dist::Scheme::level_sync, 0, 2},
+      {"astar", distributed::Scheme::async, 0, 2},
+      {"dijkstra", distributed::Scheme::bulk_sync, 0, 1},
+      {"wastar", distributed::Scheme::async, 0, 1},
+      {"bfs", distributed::Scheme::level_sync, 0, 2},
       // Slabs of 3: most states have their whole neighbourhood on their rank, and their
       // successors skip the owner look-up.
-      {"dijkstra", dist::Scheme::async, 0, 3},
+      {"dijkstra", distributed::Scheme::async, 0, 3},
       // Prefix cuts: the boundary runs along two axes.
-      {"astar", dist::Scheme::async, 0, 0, true},
-      {"dijkstra", dist::Scheme::bulk_sync, 0, 0, true},
+      {"astar", distributed::Scheme::async, 0, 0, true},
+      {"dijkstra", distributed::Scheme::bulk_sync, 0, 0, true},
   };
   SplitMix64 rng(2026);
   int solved = 0, compared = 0;
@@ -119,13 +119,13 @@ TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
         o.algorithm = parse_grid_algorithm(c.algo);
         o.keep_path = true;
         if (o.algorithm == GridAlgorithm::wastar) o.weight = 1.8;
-        dist::DistGridOptions dopt;
-        dopt.scheme = c.scheme == dist::Scheme::level_sync ? dist::Scheme::async : c.scheme;
+        distributed::DistGridOptions dopt;
+        dopt.scheme = c.scheme == distributed::Scheme::level_sync ? distributed::Scheme::async : c.scheme;
         dopt.coarsen_shift = c.coarsen;
         dopt.slab_width = c.slabs;
         if (c.cuts) dopt.prefix_cuts = even_cuts(p.extent, g_comm->size());
         dopt.batch = 1 + rng.next_below(64);  // small batches: many messages in flight
-        const GridReport r = dist::solve_grid_distributed(p, o, dopt, *g_comm);
+        const GridReport r = distributed::solve_grid_distributed(p, o, dopt, *g_comm);
         if (!root()) continue;
         GridSearchOptions so = o;
         if (o.algorithm == GridAlgorithm::wastar) {
@@ -169,12 +169,12 @@ using hpcplan::test_support::walled_line;
 TEST(Distributed, NoPathIsAgreedByEveryRankForEveryScheme) {
   const GridProblem p = walled_line();
   for (const char* algo : {"astar", "wastar", "dijkstra", "bfs"})
-    for (auto scheme : {dist::Scheme::async, dist::Scheme::bulk_sync}) {
+    for (auto scheme : {distributed::Scheme::async, distributed::Scheme::bulk_sync}) {
       GridSearchOptions o;
       o.algorithm = parse_grid_algorithm(algo);
-      dist::DistGridOptions d;
+      distributed::DistGridOptions d;
       d.scheme = scheme;
-      const GridReport r = dist::solve_grid_distributed(p, o, d, *g_comm);
+      const GridReport r = distributed::solve_grid_distributed(p, o, d, *g_comm);
       // Every rank learns the outcome, not only rank 0.
       EXPECT_EQ(r.status, search::Status::no_path) << algo;
     }
@@ -185,13 +185,13 @@ TEST(Distributed, BudgetExceededStopsEveryRank) {
   p.dims = 4;
   p.extent = 30;
   for (const char* algo : {"dijkstra", "bfs", "astar"})
-    for (auto scheme : {dist::Scheme::async, dist::Scheme::bulk_sync}) {
+    for (auto scheme : {distributed::Scheme::async, distributed::Scheme::bulk_sync}) {
       GridSearchOptions o;
       o.algorithm = parse_grid_algorithm(algo);
       o.max_states = 2000;
-      dist::DistGridOptions d;
+      distributed::DistGridOptions d;
       d.scheme = scheme;
-      const GridReport r = dist::solve_grid_distributed(p, o, d, *g_comm);
+      const GridReport r = distributed::solve_grid_distributed(p, o, d, *g_comm);
       EXPECT_EQ(r.status, search::Status::budget_exceeded) << algo;
       if (root()) {
         for (const auto& k : r.per_rank)
@@ -204,13 +204,13 @@ TEST(Distributed, TimeLimitStopsEveryRank) {
   GridProblem p;
   p.dims = 6;
   p.extent = 40;  // millions of states: Dijkstra cannot finish in 0.2 s
-  for (auto scheme : {dist::Scheme::async, dist::Scheme::bulk_sync}) {
+  for (auto scheme : {distributed::Scheme::async, distributed::Scheme::bulk_sync}) {
     GridSearchOptions o;
     o.algorithm = GridAlgorithm::dijkstra;
     o.time_limit_s = 0.2;
-    dist::DistGridOptions d;
+    distributed::DistGridOptions d;
     d.scheme = scheme;
-    const GridReport r = dist::solve_grid_distributed(p, o, d, *g_comm);
+    const GridReport r = distributed::solve_grid_distributed(p, o, d, *g_comm);
     EXPECT_EQ(r.status, search::Status::timeout);
     if (root()) {
       EXPECT_LT(r.counters.time_ms, 5000.0);
@@ -234,11 +234,11 @@ TEST(Distributed, RankSimulatorPredictsTheRealSplit) {
   o.algorithm = GridAlgorithm::dijkstra;
   for (int k : {0, 1}) {
     const partition::RankSimulation sim = partition::simulate_ranks(p, o, {p_ranks}, {k});
-    dist::DistGridOptions d;
-    d.scheme = dist::Scheme::bulk_sync;
+    distributed::DistGridOptions d;
+    d.scheme = distributed::Scheme::bulk_sync;
     d.coarsen_shift = k;
     d.sync_every = 16;
-    const GridReport r = dist::solve_grid_distributed(p, o, d, *g_comm);
+    const GridReport r = distributed::solve_grid_distributed(p, o, d, *g_comm);
     if (!root()) continue;
     ASSERT_EQ(sim.splits.size(), 1u);
     const auto& s = sim.splits[0];
@@ -271,7 +271,7 @@ TEST(Distributed, StartEqualsGoal) {
   for (const char* algo : {"astar", "bfs"}) {
     GridSearchOptions o;
     o.algorithm = parse_grid_algorithm(algo);
-    const GridReport r = dist::solve_grid_distributed(p, o, {}, *g_comm);
+    const GridReport r = distributed::solve_grid_distributed(p, o, {}, *g_comm);
     EXPECT_EQ(r.status, search::Status::solved);
     EXPECT_EQ(r.cost, 0.0);
     EXPECT_EQ(r.hops, 0u);
@@ -371,16 +371,16 @@ TEST(Distributed, BalancedPrefixCutsSplitTheWorkEvenly) {
   GridSearchOptions o;
   o.algorithm = GridAlgorithm::dijkstra;
   const partition::RankSimulation sim = partition::simulate_ranks(p, o, {p_ranks}, {0});
-  dist::DistGridOptions d;
-  d.scheme = dist::Scheme::bulk_sync;
+  distributed::DistGridOptions d;
+  d.scheme = distributed::Scheme::bulk_sync;
   d.prefix_cuts = partition::balanced_prefix_cuts(sim, p_ranks);
   ASSERT_EQ(d.prefix_cuts.size(), static_cast<std::size_t>(p_ranks - 1));
-  const GridReport r = dist::solve_grid_distributed(p, o, d, *g_comm);
+  const GridReport r = distributed::solve_grid_distributed(p, o, d, *g_comm);
   // Two contiguous slabs of the same lattice (collective: every rank runs it).
-  dist::DistGridOptions halves;
-  halves.scheme = dist::Scheme::bulk_sync;
+  distributed::DistGridOptions halves;
+  halves.scheme = distributed::Scheme::bulk_sync;
   halves.slab_width = 8;
-  const GridReport h = dist::solve_grid_distributed(p, o, halves, *g_comm);
+  const GridReport h = distributed::solve_grid_distributed(p, o, halves, *g_comm);
   if (!root()) return;
   ASSERT_EQ(r.status, search::Status::solved);
   EXPECT_NEAR(r.cost, sim.serial.cost, 1e-9 * (1 + r.cost));
@@ -460,43 +460,43 @@ TEST(Ownership, BalancedPrefixCutsFollowTheHistogram) {
 }
 
 TEST(DistributedOptions, ImpossibleValuesAreInputErrors) {
-  dist::DistGridOptions d;
+  distributed::DistGridOptions d;
   d.batch = 0;
-  EXPECT_THROW(dist::validate(d), InputError);
+  EXPECT_THROW(distributed::validate(d), InputError);
   d = {};
   d.coarsen_shift = 40;
-  EXPECT_THROW(dist::validate(d), InputError);
+  EXPECT_THROW(distributed::validate(d), InputError);
   d = {};
   d.sync_every = 0;
-  EXPECT_THROW(dist::validate(d), InputError);
+  EXPECT_THROW(distributed::validate(d), InputError);
   d = {};
   d.slab_width = -1;
-  EXPECT_THROW(dist::validate(d), InputError);
+  EXPECT_THROW(distributed::validate(d), InputError);
   d.slab_width = 2;
   d.coarsen_shift = 1;  // two ownerships at once
-  EXPECT_THROW(dist::validate(d), InputError);
+  EXPECT_THROW(distributed::validate(d), InputError);
   d.coarsen_shift = 0;
-  EXPECT_NO_THROW(dist::validate(d));
+  EXPECT_NO_THROW(distributed::validate(d));
   // Wider than the lattice: refused before any rank starts searching.
   GridProblem p;
   p.dims = 2;
   p.extent = 8;
   d.slab_width = 9;
-  EXPECT_THROW(dist::solve_grid_distributed(p, GridSearchOptions{}, d, *g_comm), InputError);
+  EXPECT_THROW(distributed::solve_grid_distributed(p, GridSearchOptions{}, d, *g_comm), InputError);
   // Prefix cuts: one fewer than ranks, ascending, inside extent^2, and not with another owner.
   d = {};
   d.prefix_cuts = {64};
-  EXPECT_THROW(dist::validate(d, 8, 2, 2), InputError);
+  EXPECT_THROW(distributed::validate(d, 8, 2, 2), InputError);
   d.prefix_cuts = {0};
-  EXPECT_THROW(dist::validate(d, 8, 2, 2), InputError);
+  EXPECT_THROW(distributed::validate(d, 8, 2, 2), InputError);
   d.prefix_cuts = {10, 10};
-  EXPECT_THROW(dist::validate(d, 8, 3, 2), InputError);
+  EXPECT_THROW(distributed::validate(d, 8, 3, 2), InputError);
   d.prefix_cuts = {10};
-  EXPECT_THROW(dist::validate(d, 8, 3, 2), InputError);
-  EXPECT_NO_THROW(dist::validate(d, 8, 2, 2));
+  EXPECT_THROW(distributed::validate(d, 8, 3, 2), InputError);
+  EXPECT_NO_THROW(distributed::validate(d, 8, 2, 2));
   d.slab_width = 2;
-  EXPECT_THROW(dist::validate(d, 8, 2, 2), InputError);
-  EXPECT_THROW(dist::parse_scheme("sometimes"), InputError);
+  EXPECT_THROW(distributed::validate(d, 8, 2, 2), InputError);
+  EXPECT_THROW(distributed::parse_scheme("sometimes"), InputError);
 }
 
 }  // namespace

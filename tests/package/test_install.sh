@@ -7,7 +7,7 @@ build=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
-for layer in core env search graph tree sampling plan partition mpi dist io; do
+for layer in core env search graph tree sampling plan partition mpi distributed io; do
   [[ -d "$tmp/prefix/include/hpcplan/$layer" ]] || { echo "FAIL: no headers of $layer installed" >&2; exit 1; }
 done
 cmake -S "$src/tests/package/consumer" -B "$tmp/consumer" -DCMAKE_PREFIX_PATH="$tmp/prefix" \

@@ -2,7 +2,7 @@
 // the things a downstream user of the installed package is most likely to do first.
 #include <cstdio>
 
-#include "hpcplan/dist/grid_planner_mpi.hpp"
+#include "hpcplan/distributed/grid_planner_mpi.hpp"
 #include "hpcplan/env/box_map_io.hpp"
 #include "hpcplan/mpi/communicator.hpp"
 #include "hpcplan/plan/grid_planner.hpp"

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace hpcplan::dist {
+namespace hpcplan::distributed {
 
 template <class State, class Hash>
 class SentFilter {
@@ -44,4 +44,4 @@ class SentFilter {
   std::uint64_t dropped_ = 0;
 };
 
-}  // namespace hpcplan::dist
+}  // namespace hpcplan::distributed

@@ -1,4 +1,4 @@
-#include "hpcplan/dist/grid_planner_mpi.hpp"
+#include "hpcplan/distributed/grid_planner_mpi.hpp"
 
 #include <thread>
 
@@ -9,7 +9,7 @@
 #include "hpcplan/plan/grid_planner_impl.hpp"
 #include "hpcplan/search/stamped_dense_map.hpp"
 
-namespace hpcplan::dist {
+namespace hpcplan::distributed {
 
 Scheme parse_scheme(std::string_view name) {
   if (name == "async") return Scheme::async;
@@ -170,4 +170,4 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
   return report;
 }
 
-}  // namespace hpcplan::dist
+}  // namespace hpcplan::distributed

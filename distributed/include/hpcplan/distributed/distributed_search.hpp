@@ -37,7 +37,7 @@
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/stopwatch.hpp"
-#include "hpcplan/dist/sent_filter.hpp"
+#include "hpcplan/distributed/sent_filter.hpp"
 #include "hpcplan/mpi/alltoall_exchange.hpp"
 #include "hpcplan/mpi/batched_channel.hpp"
 #include "hpcplan/mpi/communicator.hpp"
@@ -46,7 +46,7 @@
 #include "hpcplan/search/search_result.hpp"
 #include "hpcplan/search/search_store.hpp"
 
-namespace hpcplan::dist {
+namespace hpcplan::distributed {
 
 enum class Scheme { async, bulk_sync, level_sync };
 
@@ -550,4 +550,4 @@ class DistributedSearch {
   mpi::Traffic traffic_;
 };
 
-}  // namespace hpcplan::dist
+}  // namespace hpcplan::distributed

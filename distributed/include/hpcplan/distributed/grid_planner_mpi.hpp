@@ -2,11 +2,11 @@
 // The grid planner across MPI ranks: the same problem, options and report as solve_grid(),
 // searched by the distributed engine. Collective: every rank calls it with the same
 // arguments; the report is complete on rank 0 (other ranks hold their own share).
-#include "hpcplan/dist/distributed_search.hpp"
+#include "hpcplan/distributed/distributed_search.hpp"
 #include "hpcplan/mpi/communicator.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
 
-namespace hpcplan::dist {
+namespace hpcplan::distributed {
 
 struct DistGridOptions {
   // async or bulk_sync for A*, weighted A* and Dijkstra; BFS is always level_sync.
@@ -33,4 +33,4 @@ void validate(const DistGridOptions& options, int extent = 0, int ranks = 0, int
 GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOptions& options,
                                   const DistGridOptions& dist, const mpi::Communicator& comm);
 
-}  // namespace hpcplan::dist
+}  // namespace hpcplan::distributed
