@@ -25,11 +25,11 @@ void run_and_count(benchmark::State& state, const GridProblem& p, const GridSear
   double search_s = 0;
   for (auto _ : state) {
     const GridReport r = solve_grid_with<MapPolicy>(p, o);
-    benchmark::DoNotOptimize(r.cost);
-    expanded += r.counters.expanded;
-    generated += r.counters.generated;
-    checks += r.counters.collision_checks;
-    search_s += r.counters.time_ms / 1e3;
+    benchmark::DoNotOptimize(r.result.cost);
+    expanded += r.result.counters.expanded;
+    generated += r.result.counters.generated;
+    checks += r.result.counters.collision_checks;
+    search_s += r.result.counters.time_ms / 1e3;
   }
   // Rates over search time only (field set-up excluded, as the JSON's time_ms).
   state.counters["generated_per_s"] = benchmark::Counter(generated / search_s);
@@ -89,8 +89,8 @@ void BM_Query(benchmark::State& state) {
   std::uint64_t expanded = 0;
   for (auto _ : state) {
     const GridReport r = solve_grid_with<MapPolicy>(field, p, o);
-    benchmark::DoNotOptimize(r.cost);
-    expanded += r.counters.expanded;
+    benchmark::DoNotOptimize(r.result.cost);
+    expanded += r.result.counters.expanded;
   }
   state.counters["expanded"] =
       benchmark::Counter(static_cast<double>(expanded) / state.iterations());

@@ -61,20 +61,22 @@ int main(int argc, char** argv) {
           GridReport r;
           for (int i = 0; i < repeats; ++i) {
             r = solve_grid(p, o);
-            times.push_back(r.counters.time_ms);
+            times.push_back(r.result.counters.time_ms);
           }
           const double med = median(times);
           char row[512];
-          std::snprintf(
-              row, sizeof row,
-              "%d,%s,%s,%.3f,%llu,%d,%s,%.6f,%.6f,%llu,%llu,%llu,%llu,%.4f,%.4f,%.0f\n", d,
-              a.c_str(), r.heuristic.c_str(), density, static_cast<unsigned long long>(seed),
-              repeats, std::string(search::to_string(r.status)).c_str(), r.cost, r.quality,
-              static_cast<unsigned long long>(r.counters.expanded),
-              static_cast<unsigned long long>(r.counters.generated),
-              static_cast<unsigned long long>(r.counters.collision_checks),
-              static_cast<unsigned long long>(r.counters.peak_states), med,
-              *std::min_element(times.begin(), times.end()), r.counters.generated / (med / 1e3));
+          std::snprintf(row, sizeof row,
+                        "%d,%s,%s,%.3f,%llu,%d,%s,%.6f,%.6f,%llu,%llu,%llu,%llu,%.4f,%.4f,%.0f\n",
+                        d, a.c_str(), r.options.heuristic.c_str(), density,
+                        static_cast<unsigned long long>(seed), repeats,
+                        std::string(search::to_string(r.result.status)).c_str(), r.result.cost,
+                        r.result.quality,
+                        static_cast<unsigned long long>(r.result.counters.expanded),
+                        static_cast<unsigned long long>(r.result.counters.generated),
+                        static_cast<unsigned long long>(r.result.counters.collision_checks),
+                        static_cast<unsigned long long>(r.result.counters.peak_states), med,
+                        *std::min_element(times.begin(), times.end()),
+                        r.result.counters.generated / (med / 1e3));
           out << row;
           std::fputs(row, stderr);
         }

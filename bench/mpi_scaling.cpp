@@ -167,9 +167,9 @@ int main(int argc, char** argv) {
       if (no_serial) return;
       if (root) {
         const GridReport s = solve_grid(p, o);
-        serial_t.push_back(s.counters.time_ms);
-        serial_expanded = s.counters.expanded;
-        serial_cost = s.cost;
+        serial_t.push_back(s.result.counters.time_ms);
+        serial_expanded = s.result.counters.expanded;
+        serial_cost = s.result.cost;
       }
       comm.quiet_barrier();  // waiting ranks sleep: spinning would slow the serial run
     };
@@ -181,7 +181,7 @@ int main(int argc, char** argv) {
     auto time_crowded = [&] {
       if (no_serial || !ceiling) return;
       comm.quiet_barrier();
-      const double t = solve_grid(p, o).counters.time_ms;
+      const double t = solve_grid(p, o).result.counters.time_ms;
       const double slowest = comm.allreduce_max(t);
       if (root) crowd_t.push_back(slowest);
     };
@@ -196,7 +196,7 @@ int main(int argc, char** argv) {
       if (!serial_first) time_crowded();
       for (std::size_t c = 0; c < configs.size(); ++c) {
         last[c] = distributed::solve_grid_distributed(p, o, configs[c], comm);
-        dist_t[c].push_back(last[c].counters.time_ms);
+        dist_t[c].push_back(last[c].result.counters.time_ms);
       }
       if (serial_first) time_crowded();
       if (!serial_first) time_serial();
@@ -213,16 +213,16 @@ int main(int argc, char** argv) {
     std::ostringstream rows;
     for (std::size_t c = 0; c < configs.size() && root; ++c) {
       const GridReport& g = last[c];
-      if (!no_serial && std::abs(g.cost - serial_cost) > 1e-6 * (1 + serial_cost) &&
+      if (!no_serial && std::abs(g.result.cost - serial_cost) > 1e-6 * (1 + serial_cost) &&
           o.algorithm != GridAlgorithm::bfs && o.algorithm != GridAlgorithm::wastar)
         throw RunError("distributed cost differs from serial");
       std::uint64_t messages = 0, bytes = 0;
-      for (const auto& k2 : g.per_rank) {
+      for (const auto& k2 : g.distribution.per_rank) {
         messages += k2.messages_sent;
         bytes += k2.bytes_sent;
       }
       const double med = median(dist_t[c]);
-      const double ex = static_cast<double>(std::max<std::uint64_t>(1, g.counters.expanded));
+      const double ex = static_cast<double>(std::max<std::uint64_t>(1, g.result.counters.expanded));
       const double speedup = no_serial ? 0.0 : median(ratio[c]);
       std::string cuts;  // positions joined by ';' (the CSV's own separator is ',')
       for (auto x : configs[c].prefix_cuts) {
@@ -230,21 +230,22 @@ int main(int argc, char** argv) {
         cuts += std::to_string(x);
       }
       char line[2048];
-      std::snprintf(
-          line, sizeof line,
-          "%s,%d,%d,%d,%.2f,%s,%s,%zu,%d,%d,%d,%s,%.6f,%llu,%llu,%.3f,%.3f,%.3f,%.3f,"
-          "%.3f,%.5f,%.2f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%s,%.3f,%.3f,%.3f,%.3f\n",
-          label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
-          g.scheme.c_str(), configs[c].batch, configs[c].coarsen_shift, configs[c].sent_filter_log2,
-          repeats, std::string(search::to_string(g.status)).c_str(), g.cost,
-          static_cast<unsigned long long>(g.counters.expanded),
-          static_cast<unsigned long long>(serial_expanded), serial_ms, med,
-          no_serial ? 0.0 : serial_ms / med, speedup, speedup / comm.size(), messages / ex,
-          bytes / ex, workload_deviation_percent(g.per_rank),
-          serial_expanded ? ex / static_cast<double>(serial_expanded) : 0.0, lowest(ratio[c]),
-          highest(ratio[c]), median(of_ceiling[c]), lowest(of_ceiling[c]), highest(of_ceiling[c]),
-          configs[c].slab_width, cuts.c_str(), quantile(of_ceiling[c], 0.25),
-          quantile(of_ceiling[c], 0.75), lowest(serial_t), highest(serial_t));
+      std::snprintf(line, sizeof line,
+                    "%s,%d,%d,%d,%.2f,%s,%s,%zu,%d,%d,%d,%s,%.6f,%llu,%llu,%.3f,%.3f,%.3f,%.3f,"
+                    "%.3f,%.5f,%.2f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%s,%.3f,%.3f,%.3f,%.3f\n",
+                    label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
+                    g.distribution.scheme.c_str(), configs[c].batch, configs[c].coarsen_shift,
+                    configs[c].sent_filter_log2, repeats,
+                    std::string(search::to_string(g.result.status)).c_str(), g.result.cost,
+                    static_cast<unsigned long long>(g.result.counters.expanded),
+                    static_cast<unsigned long long>(serial_expanded), serial_ms, med,
+                    no_serial ? 0.0 : serial_ms / med, speedup, speedup / comm.size(),
+                    messages / ex, bytes / ex, workload_deviation_percent(g.distribution.per_rank),
+                    serial_expanded ? ex / static_cast<double>(serial_expanded) : 0.0,
+                    lowest(ratio[c]), highest(ratio[c]), median(of_ceiling[c]),
+                    lowest(of_ceiling[c]), highest(of_ceiling[c]), configs[c].slab_width,
+                    cuts.c_str(), quantile(of_ceiling[c], 0.25), quantile(of_ceiling[c], 0.75),
+                    lowest(serial_t), highest(serial_t));
       rows << line;
       std::fputs(line, stderr);
     }

@@ -71,21 +71,22 @@ void run_distributed(const GogField& field, const GridProblem& problem, const Gr
                      const DistGridOptions& dist, const mpi::Communicator& comm,
                      GridReport& report) {
   LatticeGraph<W> graph(field, problem.connectivity);
-  const auto start = graph.pack(report.start);
-  const auto goal = graph.pack(report.goal);
+  const auto start = graph.pack(report.problem.start);
+  const auto goal = graph.pack(report.problem.goal);
   const int p = comm.size();
   // A user's budget is the job's total; the derived one is already per rank.
-  std::uint64_t per_rank = report.max_states;
+  std::uint64_t per_rank = report.options.max_states;
   if (o.max_states != 0)
     per_rank = (o.max_states + static_cast<std::uint64_t>(p) - 1) / static_cast<std::uint64_t>(p);
   else
-    report.max_states = per_rank * static_cast<std::uint64_t>(p);
-  auto eo = hpcplan::detail::engine_options(o, report.weight, per_rank);
+    report.options.max_states = per_rank * static_cast<std::uint64_t>(p);
+  auto eo = hpcplan::detail::engine_options(o, report.options.weight, per_rank);
   // The serial engine's rule: small one-word lattices keep their states in the dense store
   // (each rank faults in only the pages its own states fall on).
   const bool dense = W == 1 && dense_visited_fits(problem.dims, problem.extent);
   if (dense) eo.dense_keys = graph.layout().dense_index_bound();
-  report.visited_map = dense ? search::StampedDensePolicy::name : search::DefaultVisitedMap::name;
+  report.options.visited_map =
+      dense ? search::StampedDensePolicy::name : search::DefaultVisitedMap::name;
 
   DistOptions d;
   d.scheme = o.algorithm == GridAlgorithm::bfs ? Scheme::level_sync : dist.scheme;
@@ -109,16 +110,17 @@ void run_distributed(const GogField& field, const GridProblem& problem, const Gr
     return with(search::DefaultVisitedMap{});
   };
   const auto r =
-      hpcplan::detail::with_heuristic<W>(o, problem, graph.layout(), report.goal, search);
-  report.status = r.result.status;
-  report.cost = r.result.cost;
-  report.hops = r.result.hops;
-  report.counters = r.result.counters;
-  report.per_rank = std::move(r.per_rank);
+      hpcplan::detail::with_heuristic<W>(o, problem, graph.layout(), report.problem.goal, search);
+  GridResult& out = report.result;
+  out.status = r.result.status;
+  out.cost = r.result.cost;
+  out.hops = r.result.hops;
+  out.counters = r.result.counters;
+  report.distribution.per_rank = std::move(r.per_rank);
   // One rank runs the serial engine (DistributedSearch::run), and says so.
-  report.scheme = p == 1 ? "serial" : std::string(to_string(d.scheme));
+  report.distribution.scheme = p == 1 ? "serial" : std::string(to_string(d.scheme));
   if (o.keep_path)
-    for (const auto& s : r.result.path) report.path.push_back(graph.unpack(s));
+    for (const auto& s : r.result.path) out.path.push_back(graph.unpack(s));
 }
 
 }  // namespace
@@ -130,14 +132,15 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
   Stopwatch setup;
   const GogField field(problem.dims, problem.extent, problem.gog);
   GridReport report = prepare_grid_report(problem, options, field, comm.ranks_on_node());
-  report.setup_ms = setup.milliseconds();
-  report.ranks = comm.size();
-  report.coarsen_shift = dist.coarsen_shift;
-  report.slab_width = dist.slab_width;
-  report.prefix_cuts = dist.prefix_cuts;
-  report.batch = dist.batch;
-  report.batch_age_ms = dist.batch_age_ms;
-  report.sync_every = dist.sync_every;
+  report.result.setup_ms = setup.milliseconds();
+  GridDistribution& dr = report.distribution;
+  dr.ranks = comm.size();
+  dr.coarsen_shift = dist.coarsen_shift;
+  dr.slab_width = dist.slab_width;
+  dr.prefix_cuts = dist.prefix_cuts;
+  dr.batch = dist.batch;
+  dr.batch_age_ms = dist.batch_age_ms;
+  dr.sync_every = dist.sync_every;
 
   if (dist.compare_serial && comm.rank() == 0) {
     // Before the distributed run (the other ranks wait at its opening barrier), so the two
@@ -147,15 +150,12 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
     GridSearchOptions serial_options = options;
     serial_options.jump_points = false;
     const GridReport serial = solve_grid(problem, serial_options);
-    report.has_serial_reference = true;
-    report.serial_status = serial.status;
-    report.serial_cost = serial.cost;
-    report.serial_hops = serial.hops;
-    report.serial_expanded = serial.counters.expanded;
-    report.serial_time_ms = serial.counters.time_ms;
+    report.serial =
+        SerialReference{serial.result.status, serial.result.cost, serial.result.hops,
+                        serial.result.counters.expanded, serial.result.counters.time_ms};
   }
 
-  switch (report.key_words) {
+  switch (report.options.key_words) {
     case 1:
       run_distributed<1>(field, problem, options, dist, comm, report);
       break;

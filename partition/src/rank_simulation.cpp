@@ -112,18 +112,19 @@ void run(const GogField& field, const GridProblem& problem, const GridSearchOpti
   GridReport& report = sim.serial;
   LatticeGraph<W> graph(field, problem.connectivity);
   OwnershipCensus<W> census(graph, shifts, sim.splits, sim.expanded_by_prefix);
-  const auto start = graph.pack(report.start);
-  const auto goal = graph.pack(report.goal);
+  const auto start = graph.pack(report.problem.start);
+  const auto goal = graph.pack(report.problem.goal);
   census.observe_start(start);
-  const auto eo = hpcplan::detail::engine_options(o, report.weight, report.max_states);
+  const auto eo =
+      hpcplan::detail::engine_options(o, report.options.weight, report.options.max_states);
   const auto r = hpcplan::detail::with_heuristic<W>(
-      o, problem, graph.layout(), report.goal, [&](const auto& h) {
+      o, problem, graph.layout(), report.problem.goal, [&](const auto& h) {
         return search::best_first_search<search::DefaultVisitedMap>(census, start, goal, h, eo);
       });
-  report.status = r.status;
-  report.cost = r.cost;
-  report.hops = r.hops;
-  report.counters = r.counters;
+  report.result.status = r.status;
+  report.result.cost = r.cost;
+  report.result.hops = r.hops;
+  report.result.counters = r.counters;
 }
 
 }  // namespace
@@ -184,8 +185,8 @@ RankSimulation simulate_ranks(const GridProblem& problem, const GridSearchOption
   Stopwatch setup;
   const GogField field(problem.dims, problem.extent, problem.gog);
   sim.serial = prepare_grid_report(problem, options, field, 1);
-  sim.serial.setup_ms = setup.milliseconds();
-  switch (sim.serial.key_words) {
+  sim.serial.result.setup_ms = setup.milliseconds();
+  switch (sim.serial.options.key_words) {
     case 1:
       run<1>(field, problem, options, shifts, sim);
       break;
@@ -201,12 +202,12 @@ RankSimulation simulate_ranks(const GridProblem& problem, const GridSearchOption
     s.expansion_deviation_percent = deviation_percent(s.expanded);
     s.stored_deviation_percent = deviation_percent(s.stored);
     const std::uint64_t busiest = *std::max_element(s.expanded.begin(), s.expanded.end());
-    const double mean = static_cast<double>(sim.serial.counters.expanded) / s.ranks;
+    const double mean = static_cast<double>(sim.serial.result.counters.expanded) / s.ranks;
     s.imbalance = mean > 0 ? static_cast<double>(busiest) / mean : 1.0;
     s.remote_fraction =
         s.generated ? static_cast<double>(s.remote_successors) / static_cast<double>(s.generated)
                     : 0.0;
-    const std::uint64_t ex = std::max<std::uint64_t>(1, sim.serial.counters.expanded);
+    const std::uint64_t ex = std::max<std::uint64_t>(1, sim.serial.result.counters.expanded);
     s.remote_per_expansion = static_cast<double>(s.remote_successors) / static_cast<double>(ex);
   }
   return sim;

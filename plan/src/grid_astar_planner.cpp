@@ -121,10 +121,11 @@ ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition&
   options.max_states = max_states_;
   options.stop_when = [&ptc] { return ptc(); };
   last_ = solve_grid(field, problem, options);  // the space's own field, built once
-  space_.checks->add(last_.counters.collision_checks);
-  if (last_.status == search::Status::timeout || last_.status == search::Status::cancelled)
+  space_.checks->add(last_.result.counters.collision_checks);
+  if (last_.result.status == search::Status::timeout ||
+      last_.result.status == search::Status::cancelled)
     return ob::PlannerStatus::TIMEOUT;
-  if (last_.status != search::Status::solved) return ob::PlannerStatus::ABORT;
+  if (last_.result.status != search::Status::solved) return ob::PlannerStatus::ABORT;
   // The smoothing's budget also covers building the continuous path, so the smoothed answer
   // comes within (1 + smoothing_budget) times the search's own time.
   const Stopwatch since_search;
@@ -140,8 +141,8 @@ ob::PlannerStatus GridAStarPlanner::solve(const ob::PlannerTerminationCondition&
   // Only the cells where the lattice path turns: the centres between them lie on the same
   // straight segments, so the path is the same curve with a fraction of the vertices, and the
   // smoothing's passes over vertices cost less.
-  for (std::size_t i = 0; i < last_.path.size(); ++i)
-    if (turns_at(last_.path, i)) append_centre(last_.path[i]);
+  for (std::size_t i = 0; i < last_.result.path.size(); ++i)
+    if (turns_at(last_.result.path, i)) append_centre(last_.result.path[i]);
   path->append(goal_state);
   // Drop the centres that coincide with the exact start or goal (zero-length segments).
   auto& states = path->getStates();
@@ -187,7 +188,7 @@ void GridAStarPlanner::smooth(og::PathGeometric& path, const ob::PlannerTerminat
   // 0 = no limit (smoothing_budget 0: until it converges).
   double budget_s = 0.0;
   if (smoothing_budget_ > 0) {
-    budget_s = smoothing_budget_ * last_.counters.time_ms / 1e3 - spent_s;
+    budget_s = smoothing_budget_ * last_.result.counters.time_ms / 1e3 - spent_s;
     if (budget_s <= 0) return;  // building the path spent it all
   }
   if (si_->getStateDimension() == 2) {
@@ -240,9 +241,9 @@ void GridAStarPlanner::pull_taut_2d(og::PathGeometric& path,
 
 void GridAStarPlanner::getPlannerData(ob::PlannerData& data) const {
   Planner::getPlannerData(data);
-  data.properties["expanded INTEGER"] = std::to_string(last_.counters.expanded);
-  data.properties["lattice cost REAL"] = std::to_string(last_.cost);
-  data.properties["search time REAL"] = std::to_string(last_.counters.time_ms / 1e3);
+  data.properties["expanded INTEGER"] = std::to_string(last_.result.counters.expanded);
+  data.properties["lattice cost REAL"] = std::to_string(last_.result.cost);
+  data.properties["search time REAL"] = std::to_string(last_.result.counters.time_ms / 1e3);
   data.properties["smoothing time REAL"] = std::to_string(last_smoothing_s_);
 }
 

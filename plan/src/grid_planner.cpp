@@ -33,20 +33,22 @@ GridReport solve_grid(const GogField& field, const GridProblem& problem,
 GridReport prepare_grid_report(const GridProblem& problem, const GridSearchOptions& options,
                                const GogField& field, int ranks_sharing_memory) {
   GridReport report;
-  report.dims = problem.dims;
-  report.extent = problem.extent;
-  report.seed = problem.gog.seed;
-  report.threshold = field.threshold();
-  report.blocked_fraction = field.blocked_fraction();
-  report.shift_p = problem.gog.shift_p;
-  report.shift_v = problem.gog.shift_v;
-  report.connectivity = std::string(to_string(problem.connectivity));
-  report.algorithm = std::string(to_string(options.algorithm));
-  report.heuristic =
+  GridProblemReport& pr = report.problem;
+  pr.dims = problem.dims;
+  pr.extent = problem.extent;
+  pr.seed = problem.gog.seed;
+  pr.threshold = field.threshold();
+  pr.blocked_fraction = field.blocked_fraction();
+  pr.shift_p = problem.gog.shift_p;
+  pr.shift_v = problem.gog.shift_v;
+  pr.connectivity = std::string(to_string(problem.connectivity));
+  GridOptionsReport& op = report.options;
+  op.algorithm = std::string(to_string(options.algorithm));
+  op.heuristic =
       options.algorithm == GridAlgorithm::dijkstra || options.algorithm == GridAlgorithm::bfs
           ? "none"
           : std::string(to_string(options.heuristic));
-  report.weight = options.algorithm == GridAlgorithm::wastar ? options.weight.value_or(2.0) : 1.0;
+  op.weight = options.algorithm == GridAlgorithm::wastar ? options.weight.value_or(2.0) : 1.0;
 
   auto endpoint = [&](const std::optional<std::vector<int>>& given, int corner, int direction,
                       const char* what, bool& adjusted) {
@@ -62,32 +64,33 @@ GridReport prepare_grid_report(const GridProblem& problem, const GridSearchOptio
     adjusted = free != nominal;
     return free;
   };
-  report.start = endpoint(problem.start, 0, +1, "start", report.start_adjusted);
-  report.goal = endpoint(problem.goal, problem.extent - 1, -1, "goal", report.goal_adjusted);
+  pr.start = endpoint(problem.start, 0, +1, "start", pr.start_adjusted);
+  pr.goal = endpoint(problem.goal, problem.extent - 1, -1, "goal", pr.goal_adjusted);
 
   double sq = 0.0;
   for (int i = 0; i < problem.dims; ++i) {
-    const double d = report.goal[i] - report.start[i];
+    const double d = pr.goal[i] - pr.start[i];
     sq += d * d;
   }
-  report.straight_line = std::sqrt(sq);
+  pr.straight_line = std::sqrt(sq);
 
   const KeyLayout layout(problem.dims, problem.extent);
-  report.key_words = layout.words() <= 1 ? 1 : layout.words() <= 2 ? 2 : 4;
-  report.max_states = options.max_states;
-  if (report.max_states == 0) {
+  op.key_words = layout.words() <= 1 ? 1 : layout.words() <= 2 ? 2 : 4;
+  op.max_states = options.max_states;
+  if (op.max_states == 0) {
     // Stop with budget_exceeded well before the kernel's OOM killer would.
     const std::uint64_t avail = available_memory_bytes();
-    report.max_states =
-        avail ? avail / 2 / std::max(1, ranks_sharing_memory) / bytes_per_state(report.key_words)
+    op.max_states =
+        avail ? avail / 2 / std::max(1, ranks_sharing_memory) / bytes_per_state(op.key_words)
               : 100'000'000;
   }
   return report;
 }
 
 void finish_grid_report(GridReport& report) {
-  if (report.status == search::Status::solved)
-    report.quality = report.straight_line > 0 ? report.cost / report.straight_line : 1.0;
+  GridResult& r = report.result;
+  if (r.status == search::Status::solved)
+    r.quality = report.problem.straight_line > 0 ? r.cost / report.problem.straight_line : 1.0;
 }
 
 double workload_deviation_percent(const std::vector<search::RankCounters>& per_rank) {

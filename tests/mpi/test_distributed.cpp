@@ -32,15 +32,15 @@ bool root() {
 // Independent of the engines: consecutive states differ by one step in one or two axes
 // (any number for full connectivity) and every corner of the move's unit cell is free.
 void expect_valid_path(const GridReport& r, const GridProblem& p) {
-  ASSERT_FALSE(r.path.empty());
-  EXPECT_EQ(r.path.front(), r.start);
-  EXPECT_EQ(r.path.back(), r.goal);
+  ASSERT_FALSE(r.result.path.empty());
+  EXPECT_EQ(r.result.path.front(), r.problem.start);
+  EXPECT_EQ(r.result.path.back(), r.problem.goal);
   const GogField field(p.dims, p.extent, p.gog);
   double length = 0.0;
-  for (std::size_t i = 1; i < r.path.size(); ++i) {
+  for (std::size_t i = 1; i < r.result.path.size(); ++i) {
     std::vector<int> axes;
     for (int a = 0; a < p.dims; ++a) {
-      const int diff = r.path[i][a] - r.path[i - 1][a];
+      const int diff = r.result.path[i][a] - r.result.path[i - 1][a];
       ASSERT_LE(std::abs(diff), 1);
       if (diff != 0) axes.push_back(a);
     }
@@ -49,14 +49,14 @@ void expect_valid_path(const GridReport& r, const GridProblem& p) {
       ASSERT_LE(axes.size(), 2u);
     }
     for (unsigned subset = 0; subset < (1u << axes.size()); ++subset) {
-      std::vector<int> corner = r.path[i - 1];
+      std::vector<int> corner = r.result.path[i - 1];
       for (std::size_t j = 0; j < axes.size(); ++j)
-        if (subset & (1u << j)) corner[axes[j]] = r.path[i][axes[j]];
+        if (subset & (1u << j)) corner[axes[j]] = r.result.path[i][axes[j]];
       ASSERT_TRUE(field.is_free(corner)) << "path crosses an obstacle at step " << i;
     }
     length += std::sqrt(static_cast<double>(axes.size()));
   }
-  EXPECT_NEAR(length, r.cost, 1e-9 * (1 + r.cost));
+  EXPECT_NEAR(length, r.result.cost, 1e-9 * (1 + r.result.cost));
 }
 
 int extent_for(int d) {
@@ -120,7 +120,8 @@ TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
         o.keep_path = true;
         if (o.algorithm == GridAlgorithm::wastar) o.weight = 1.8;
         distributed::DistGridOptions dopt;
-        dopt.scheme = c.scheme == distributed::Scheme::level_sync ? distributed::Scheme::async : c.scheme;
+        dopt.scheme =
+            c.scheme == distributed::Scheme::level_sync ? distributed::Scheme::async : c.scheme;
         dopt.coarsen_shift = c.coarsen;
         dopt.slab_width = c.slabs;
         if (c.cuts) dopt.prefix_cuts = even_cuts(p.extent, g_comm->size());
@@ -134,26 +135,27 @@ TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
         }
         const GridReport s = solve_grid(p, so);  // the optimum (or fewest hops for BFS)
         SCOPED_TRACE(::testing::Message()
-                     << "d=" << d << " seed=" << p.gog.seed << " algo=" << c.algo
-                     << " scheme=" << r.scheme << " coarsen=" << c.coarsen << " slabs=" << c.slabs
-                     << " cuts=" << c.cuts << " ranks=" << r.ranks);
+                     << "d=" << d << " seed=" << p.gog.seed << " algo=" << c.algo << " scheme="
+                     << r.distribution.scheme << " coarsen=" << c.coarsen << " slabs=" << c.slabs
+                     << " cuts=" << c.cuts << " ranks=" << r.distribution.ranks);
         ++compared;
-        EXPECT_EQ(r.status, s.status);
-        if (r.status != search::Status::solved || s.status != search::Status::solved) continue;
+        EXPECT_EQ(r.result.status, s.result.status);
+        if (r.result.status != search::Status::solved || s.result.status != search::Status::solved)
+          continue;
         ++solved;
         expect_valid_path(r, p);
         if (o.algorithm == GridAlgorithm::bfs) {
-          EXPECT_EQ(r.hops, s.hops);
+          EXPECT_EQ(r.result.hops, s.result.hops);
         } else if (o.algorithm == GridAlgorithm::wastar) {
-          EXPECT_GE(r.cost, s.cost - 1e-9);
-          EXPECT_LE(r.cost, 1.8 * s.cost + 1e-9);
+          EXPECT_GE(r.result.cost, s.result.cost - 1e-9);
+          EXPECT_LE(r.result.cost, 1.8 * s.result.cost + 1e-9);
         } else {
-          EXPECT_NEAR(r.cost, s.cost, 1e-9 * (1 + s.cost));
+          EXPECT_NEAR(r.result.cost, s.result.cost, 1e-9 * (1 + s.result.cost));
         }
         std::uint64_t expanded = 0;
-        for (const auto& k : r.per_rank) expanded += k.expanded;
-        EXPECT_EQ(expanded, r.counters.expanded);
-        EXPECT_EQ(r.per_rank.size(), static_cast<std::size_t>(g_comm->size()));
+        for (const auto& k : r.distribution.per_rank) expanded += k.expanded;
+        EXPECT_EQ(expanded, r.result.counters.expanded);
+        EXPECT_EQ(r.distribution.per_rank.size(), static_cast<std::size_t>(g_comm->size()));
       }
     }
   }
@@ -176,7 +178,7 @@ TEST(Distributed, NoPathIsAgreedByEveryRankForEveryScheme) {
       d.scheme = scheme;
       const GridReport r = distributed::solve_grid_distributed(p, o, d, *g_comm);
       // Every rank learns the outcome, not only rank 0.
-      EXPECT_EQ(r.status, search::Status::no_path) << algo;
+      EXPECT_EQ(r.result.status, search::Status::no_path) << algo;
     }
 }
 
@@ -192,9 +194,9 @@ TEST(Distributed, BudgetExceededStopsEveryRank) {
       distributed::DistGridOptions d;
       d.scheme = scheme;
       const GridReport r = distributed::solve_grid_distributed(p, o, d, *g_comm);
-      EXPECT_EQ(r.status, search::Status::budget_exceeded) << algo;
+      EXPECT_EQ(r.result.status, search::Status::budget_exceeded) << algo;
       if (root()) {
-        for (const auto& k : r.per_rank)
+        for (const auto& k : r.distribution.per_rank)
           EXPECT_LE(k.states_stored, 2000u / g_comm->size() + 2) << algo;
       }
     }
@@ -211,9 +213,9 @@ TEST(Distributed, TimeLimitStopsEveryRank) {
     distributed::DistGridOptions d;
     d.scheme = scheme;
     const GridReport r = distributed::solve_grid_distributed(p, o, d, *g_comm);
-    EXPECT_EQ(r.status, search::Status::timeout);
+    EXPECT_EQ(r.result.status, search::Status::timeout);
     if (root()) {
-      EXPECT_LT(r.counters.time_ms, 5000.0);
+      EXPECT_LT(r.result.counters.time_ms, 5000.0);
     }
   }
 }
@@ -242,11 +244,11 @@ TEST(Distributed, RankSimulatorPredictsTheRealSplit) {
     if (!root()) continue;
     ASSERT_EQ(sim.splits.size(), 1u);
     const auto& s = sim.splits[0];
-    ASSERT_EQ(r.per_rank.size(), static_cast<std::size_t>(p_ranks));
-    const double total = static_cast<double>(sim.serial.counters.expanded);
+    ASSERT_EQ(r.distribution.per_rank.size(), static_cast<std::size_t>(p_ranks));
+    const double total = static_cast<double>(sim.serial.result.counters.expanded);
     std::uint64_t remote = 0;
     for (int rank = 0; rank < p_ranks; ++rank) {
-      const auto& real = r.per_rank[rank];
+      const auto& real = r.distribution.per_rank[rank];
       EXPECT_NEAR(static_cast<double>(real.expanded), static_cast<double>(s.expanded[rank]),
                   0.02 * total)
           << "rank " << rank << " k " << k;
@@ -272,9 +274,9 @@ TEST(Distributed, StartEqualsGoal) {
     GridSearchOptions o;
     o.algorithm = parse_grid_algorithm(algo);
     const GridReport r = distributed::solve_grid_distributed(p, o, {}, *g_comm);
-    EXPECT_EQ(r.status, search::Status::solved);
-    EXPECT_EQ(r.cost, 0.0);
-    EXPECT_EQ(r.hops, 0u);
+    EXPECT_EQ(r.result.status, search::Status::solved);
+    EXPECT_EQ(r.result.cost, 0.0);
+    EXPECT_EQ(r.result.hops, 0u);
   }
 }
 
@@ -382,15 +384,15 @@ TEST(Distributed, BalancedPrefixCutsSplitTheWorkEvenly) {
   halves.slab_width = 8;
   const GridReport h = distributed::solve_grid_distributed(p, o, halves, *g_comm);
   if (!root()) return;
-  ASSERT_EQ(r.status, search::Status::solved);
-  EXPECT_NEAR(r.cost, sim.serial.cost, 1e-9 * (1 + r.cost));
-  EXPECT_EQ(r.prefix_cuts, d.prefix_cuts);
+  ASSERT_EQ(r.result.status, search::Status::solved);
+  EXPECT_NEAR(r.result.cost, sim.serial.result.cost, 1e-9 * (1 + r.result.cost));
+  EXPECT_EQ(r.distribution.prefix_cuts, d.prefix_cuts);
   // One of 256 positions holds at most a few percent of the work, so a cut lands within it.
-  const double deviation = workload_deviation_percent(r.per_rank);
+  const double deviation = workload_deviation_percent(r.distribution.per_rank);
   EXPECT_LT(deviation, 8.0) << "cuts at " << ::testing::PrintToString(d.prefix_cuts);
   // The halves are far less even at two ranks: the search starts in one of them.
   if (p_ranks == 2) {
-    EXPECT_LT(deviation, workload_deviation_percent(h.per_rank));
+    EXPECT_LT(deviation, workload_deviation_percent(h.distribution.per_rank));
   }
 }
 

@@ -216,9 +216,9 @@ TEST_P(GridPlannerInOmpl, LatticePathIsTheSearchCostAndShortcutsOnlyShorten) {
   const GogSpace w = space_for(d, d <= 4 ? 60 : 12);
   GridReport report;
   og::PathGeometric lattice = solve_with_grid(w, false, &report);
-  ASSERT_EQ(report.status, search::Status::solved);
+  ASSERT_EQ(report.result.status, search::Status::solved);
   // Cell centres to cell centres: the continuous length is the lattice cost exactly.
-  EXPECT_NEAR(lattice.length(), report.cost, 1e-9 * report.cost);
+  EXPECT_NEAR(lattice.length(), report.result.cost, 1e-9 * report.result.cost);
   EXPECT_TRUE(lattice.check());
   std::vector<std::vector<double>> pts;
   for (std::size_t i = 0; i < lattice.getStateCount(); ++i) {

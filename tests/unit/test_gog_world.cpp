@@ -201,9 +201,9 @@ TEST(GogWorld, TheTightenerStoppedMidPassLeavesAValidLeanPath) {
   GridSearchOptions search;
   search.keep_path = true;
   const GridReport lattice = solve_grid(*field, problem, search);
-  ASSERT_EQ(lattice.status, search::Status::solved);
+  ASSERT_EQ(lattice.result.status, search::Status::solved);
   std::vector<Vec<4>> input;
-  for (const auto& c : lattice.path)
+  for (const auto& c : lattice.result.path)
     input.push_back({c[0] + 0.5, c[1] + 0.5, c[2] + 0.5, c[3] + 0.5});
   ASSERT_GT(input.size(), 10u);
   const double before = polyline_length<4>(input);

@@ -20,8 +20,8 @@ TEST(GridPlanner, WallGivesNoPathForEveryAlgorithm) {
     GridSearchOptions o;
     o.algorithm = algo;
     const GridReport r = solve_grid(p, o);
-    EXPECT_EQ(r.status, search::Status::no_path);
-    EXPECT_TRUE(r.path.empty());
+    EXPECT_EQ(r.result.status, search::Status::no_path);
+    EXPECT_TRUE(r.result.path.empty());
   }
 }
 
@@ -31,8 +31,8 @@ TEST(GridPlanner, TinyBudgetIsReportedNotCrashed) {
   GridSearchOptions o;
   o.max_states = 10;
   const GridReport r = solve_grid(p, o);
-  EXPECT_EQ(r.status, search::Status::budget_exceeded);
-  EXPECT_LE(r.counters.peak_states, 11u);
+  EXPECT_EQ(r.result.status, search::Status::budget_exceeded);
+  EXPECT_LE(r.result.counters.peak_states, 11u);
 }
 
 TEST(GridPlanner, DefaultProblemsAreSolvedWithTheLatticeQualityLimit) {
@@ -40,12 +40,12 @@ TEST(GridPlanner, DefaultProblemsAreSolvedWithTheLatticeQualityLimit) {
     GridProblem p;
     p.dims = d;
     const GridReport r = solve_grid(p, GridSearchOptions{});
-    ASSERT_EQ(r.status, search::Status::solved) << "d=" << d;
-    EXPECT_GT(r.blocked_fraction, 0.25);
+    ASSERT_EQ(r.result.status, search::Status::solved) << "d=" << d;
+    EXPECT_GT(r.problem.blocked_fraction, 0.25);
     // A lattice path cannot beat the free-space lattice distance between the states used.
     std::vector<int> delta(d);
-    for (int i = 0; i < d; ++i) delta[i] = std::abs(r.goal[i] - r.start[i]);
-    EXPECT_GE(r.cost, seed_rule_free_distance(delta).value() - 1e-9);
+    for (int i = 0; i < d; ++i) delta[i] = std::abs(r.problem.goal[i] - r.problem.start[i]);
+    EXPECT_GE(r.result.cost, seed_rule_free_distance(delta).value() - 1e-9);
   }
 }
 
@@ -60,16 +60,16 @@ TEST(GridPlanner, DefaultCornersAreAdjustedOneAxisStepAtATime) {
     GridSearchOptions o;
     o.max_states = 1;  // only the set-up matters here
     const GridReport r = solve_grid(p, o);
-    EXPECT_TRUE(f.is_free(r.start));
-    EXPECT_TRUE(f.is_free(r.goal));
+    EXPECT_TRUE(f.is_free(r.problem.start));
+    EXPECT_TRUE(f.is_free(r.problem.goal));
     // Replay the walk: every state before the reported one must be blocked.
     std::vector<int> s(3, 0);
-    for (int step = 0; s != r.start; ++step) {
+    for (int step = 0; s != r.problem.start; ++step) {
       ASSERT_FALSE(f.is_free(s));
       ++s[step % 3];
       ASSERT_LE(step, 300);
     }
-    adjusted += r.start_adjusted;
+    adjusted += r.problem.start_adjusted;
   }
   EXPECT_GT(adjusted, 5);
 }
@@ -83,10 +83,10 @@ TEST(GridPlanner, StartEqualsGoalCostsNothing) {
   GridSearchOptions o;
   o.keep_path = true;
   const GridReport r = solve_grid(p, o);
-  EXPECT_EQ(r.status, search::Status::solved);
-  EXPECT_EQ(r.cost, 0.0);
-  EXPECT_EQ(r.quality, 1.0);
-  EXPECT_EQ(r.path.size(), 1u);
+  EXPECT_EQ(r.result.status, search::Status::solved);
+  EXPECT_EQ(r.result.cost, 0.0);
+  EXPECT_EQ(r.result.quality, 1.0);
+  EXPECT_EQ(r.result.path.size(), 1u);
 }
 
 TEST(GridPlanner, BadInputIsAnInputError) {
@@ -166,13 +166,14 @@ TEST(GridPlanner, DenseVisitedStoreEqualsTheHashMap) {
         o.keep_path = true;
         const GridReport hash = solve_grid_with<search::DefaultVisitedMap>(p, o);
         const GridReport dense = solve_grid(p, o), again = solve_grid(p, o);
-        EXPECT_EQ(hash.visited_map, search::DefaultVisitedMap::name);
-        EXPECT_EQ(dense.visited_map, search::StampedDensePolicy::name);
+        EXPECT_EQ(hash.options.visited_map, search::DefaultVisitedMap::name);
+        EXPECT_EQ(dense.options.visited_map, search::StampedDensePolicy::name);
         for (const GridReport* r : {&dense, &again}) {
-          EXPECT_EQ(r->status, hash.status) << dims << "D " << to_string(a);
-          EXPECT_EQ(r->cost, hash.cost) << dims << "D " << to_string(a);
-          EXPECT_EQ(r->path, hash.path) << dims << "D " << to_string(a);
-          EXPECT_EQ(r->counters.expanded, hash.counters.expanded) << dims << "D " << to_string(a);
+          EXPECT_EQ(r->result.status, hash.result.status) << dims << "D " << to_string(a);
+          EXPECT_EQ(r->result.cost, hash.result.cost) << dims << "D " << to_string(a);
+          EXPECT_EQ(r->result.path, hash.result.path) << dims << "D " << to_string(a);
+          EXPECT_EQ(r->result.counters.expanded, hash.result.counters.expanded)
+              << dims << "D " << to_string(a);
         }
       }
 }

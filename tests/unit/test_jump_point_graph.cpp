@@ -138,20 +138,21 @@ TEST(JumpPointGraph, PlannerUsesItFor2DAStarAndMatchesTheOracle) {
     o.jump_points = false;
     const GridReport plain = solve_grid(field, p, o);
     SCOPED_TRACE(::testing::Message() << "trial " << trial);
-    EXPECT_EQ(jps.pruning, "jump_points");
-    EXPECT_EQ(plain.pruning, "none");
-    const oracle::Answer want = oracle::Lattice(field, false).dijkstra(jps.start, jps.goal);
-    ASSERT_EQ(jps.status == search::Status::solved, want.reachable);
-    ASSERT_EQ(plain.status, jps.status);
+    EXPECT_EQ(jps.options.pruning, "jump_points");
+    EXPECT_EQ(plain.options.pruning, "none");
+    const oracle::Answer want =
+        oracle::Lattice(field, false).dijkstra(jps.problem.start, jps.problem.goal);
+    ASSERT_EQ(jps.result.status == search::Status::solved, want.reachable);
+    ASSERT_EQ(plain.result.status, jps.result.status);
     if (!want.reachable) continue;
-    EXPECT_NEAR(jps.cost, want.cost, 1e-9);
-    EXPECT_NEAR(plain.cost, want.cost, 1e-9);
-    ASSERT_EQ(jps.path.size(), jps.hops + 1);
+    EXPECT_NEAR(jps.result.cost, want.cost, 1e-9);
+    EXPECT_NEAR(plain.result.cost, want.cost, 1e-9);
+    ASSERT_EQ(jps.result.path.size(), jps.result.hops + 1);
     std::size_t illegal = 0;
-    const double length = oracle::Lattice(field, false).path_length(jps.path, &illegal);
+    const double length = oracle::Lattice(field, false).path_length(jps.result.path, &illegal);
     ASSERT_GE(length, 0.0) << "illegal move at step " << illegal;
     EXPECT_NEAR(length, want.cost, 1e-9);
-    EXPECT_LE(jps.counters.expanded, plain.counters.expanded);
+    EXPECT_LE(jps.result.counters.expanded, plain.result.counters.expanded);
   }
 }
 
@@ -161,21 +162,21 @@ TEST(JumpPointGraph, OnlyPlainAStarAt2DIsPruned) {
   GridSearchOptions o;
   o.max_states = 1'000'000;
   o.algorithm = GridAlgorithm::dijkstra;
-  EXPECT_EQ(solve_grid(p, o).pruning, "none");
+  EXPECT_EQ(solve_grid(p, o).options.pruning, "none");
   o.algorithm = GridAlgorithm::wastar;
-  EXPECT_EQ(solve_grid(p, o).pruning, "none");
+  EXPECT_EQ(solve_grid(p, o).options.pruning, "none");
   o.algorithm = GridAlgorithm::astar;
   const GridReport pruned = solve_grid(p, o);
-  EXPECT_EQ(pruned.pruning, "jump_points");
+  EXPECT_EQ(pruned.options.pruning, "jump_points");
   o.jump_points = false;
   const GridReport plain = solve_grid(p, o);
   // The default 2D problem: the same optimum with a fraction of the expansions.
-  EXPECT_DOUBLE_EQ(pruned.cost, plain.cost);
-  EXPECT_LT(pruned.counters.expanded * 4, plain.counters.expanded);
+  EXPECT_DOUBLE_EQ(pruned.result.cost, plain.result.cost);
+  EXPECT_LT(pruned.result.counters.expanded * 4, plain.result.counters.expanded);
   p.dims = 3;
   p.extent = 20;
   o.jump_points = true;
-  EXPECT_EQ(solve_grid(p, o).pruning, "none");
+  EXPECT_EQ(solve_grid(p, o).options.pruning, "none");
 }
 
 }  // namespace

@@ -59,15 +59,15 @@ GridReport run(const Instance& in, GridAlgorithm algo, HeuristicKind h = Heurist
 
 // Independent re-validation of a returned path: endpoints, legal moves, reported length.
 void expect_valid_path(const GridReport& r, const oracle::Lattice& o, const Instance& in) {
-  ASSERT_EQ(r.status, search::Status::solved);
-  ASSERT_FALSE(r.path.empty());
-  EXPECT_EQ(r.path.front(), in.start);
-  EXPECT_EQ(r.path.back(), in.goal);
-  EXPECT_EQ(r.hops + 1, r.path.size());
+  ASSERT_EQ(r.result.status, search::Status::solved);
+  ASSERT_FALSE(r.result.path.empty());
+  EXPECT_EQ(r.result.path.front(), in.start);
+  EXPECT_EQ(r.result.path.back(), in.goal);
+  EXPECT_EQ(r.result.hops + 1, r.result.path.size());
   std::size_t illegal = 0;
-  const double length = o.path_length(r.path, &illegal);
+  const double length = o.path_length(r.result.path, &illegal);
   ASSERT_GE(length, 0) << "illegal move at step " << illegal;
-  EXPECT_NEAR(length, r.cost, 1e-9);
+  EXPECT_NEAR(length, r.result.cost, 1e-9);
 }
 
 class OracleAgreement : public ::testing::TestWithParam<std::tuple<int, int, bool>> {};
@@ -87,23 +87,23 @@ TEST_P(OracleAgreement, EveryAlgorithmMatchesTheOracle) {
   const GridReport bfs = run(in, GridAlgorithm::bfs);
   if (!best.reachable) {
     for (const auto* r : {&astar, &astar_euclid, &dijkstra, &bfs})
-      EXPECT_EQ(r->status, search::Status::no_path);
+      EXPECT_EQ(r->result.status, search::Status::no_path);
     return;
   }
   for (const auto* r : {&astar, &astar_euclid, &dijkstra}) {
     expect_valid_path(*r, o, in);
-    EXPECT_NEAR(r->cost, best.cost, 1e-9 * (1 + best.cost));
+    EXPECT_NEAR(r->result.cost, best.cost, 1e-9 * (1 + best.cost));
   }
   // The exact heuristic never expands more than Dijkstra.
-  EXPECT_LE(astar.counters.expanded, dijkstra.counters.expanded);
+  EXPECT_LE(astar.result.counters.expanded, dijkstra.result.counters.expanded);
   expect_valid_path(bfs, o, in);
-  EXPECT_EQ(static_cast<std::int64_t>(bfs.hops), fewest.hops);
-  EXPECT_LE(bfs.hops, astar.hops);
+  EXPECT_EQ(static_cast<std::int64_t>(bfs.result.hops), fewest.hops);
+  EXPECT_LE(bfs.result.hops, astar.result.hops);
   for (double w : {1.5, 3.0}) {
     const GridReport wa = run(in, GridAlgorithm::wastar, HeuristicKind::lattice, w);
     expect_valid_path(wa, o, in);
-    EXPECT_LE(wa.cost, w * best.cost + 1e-9);
-    EXPECT_GE(wa.cost, best.cost - 1e-9);
+    EXPECT_LE(wa.result.cost, w * best.cost + 1e-9);
+    EXPECT_GE(wa.result.cost, best.cost - 1e-9);
   }
 }
 

@@ -70,13 +70,13 @@ TEST(Stop, AnotherThreadCancelsAGridSearchWithinMilliseconds) {
     const GridReport r = solve_grid(p, o);
     const Clock::time_point asked{Clock::duration{requested.load()}};
     latencies.push_back(ms_since(asked));
-    ASSERT_EQ(r.status, Status::cancelled);
-    EXPECT_TRUE(r.path.empty());
+    ASSERT_EQ(r.result.status, Status::cancelled);
+    EXPECT_TRUE(r.result.path.empty());
     // Counters of a search stopped between two expansions still add up.
-    EXPECT_GT(r.counters.expanded, 0u);
-    EXPECT_GE(r.counters.generated, r.counters.expanded);
-    EXPECT_GE(r.counters.peak_states, r.counters.expanded);
-    EXPECT_GE(r.counters.collision_checks, r.counters.generated);
+    EXPECT_GT(r.result.counters.expanded, 0u);
+    EXPECT_GE(r.result.counters.generated, r.result.counters.expanded);
+    EXPECT_GE(r.result.counters.peak_states, r.result.counters.expanded);
+    EXPECT_GE(r.result.counters.collision_checks, r.result.counters.generated);
   }
   // The token is read once per expansion: the search ends within one expansion of the request
   // (the best of three trials, so a descheduled thread on a busy machine cannot fail it).
@@ -94,7 +94,7 @@ TEST(Stop, ConcurrentSearchesShareTheDenseStorePool) {
   p.extent = 40;
   ASSERT_TRUE(dense_visited_fits(p.dims, p.extent));
   const GridReport reference = solve_grid(p, GridSearchOptions{});
-  ASSERT_EQ(reference.status, Status::solved);
+  ASSERT_EQ(reference.result.status, Status::solved);
   std::atomic<int> wrong{0};
   {
     std::vector<std::jthread> threads;
@@ -104,7 +104,7 @@ TEST(Stop, ConcurrentSearchesShareTheDenseStorePool) {
           GridSearchOptions o;
           o.algorithm = (t + k) % 2 ? GridAlgorithm::astar : GridAlgorithm::dijkstra;
           const GridReport r = solve_grid(p, o);
-          if (r.status != Status::solved || r.cost != reference.cost) ++wrong;
+          if (r.result.status != Status::solved || r.result.cost != reference.result.cost) ++wrong;
         }
       });
   }
@@ -141,10 +141,10 @@ TEST(Stop, GridSearchEndsOnItsStopCondition) {
   GridSearchOptions o;
   o.stop_when = [] { return true; };
   const GridReport stopped = solve_grid(p, o);
-  EXPECT_EQ(stopped.status, Status::cancelled);
-  EXPECT_LE(stopped.counters.expanded, 64u);
+  EXPECT_EQ(stopped.result.status, Status::cancelled);
+  EXPECT_LE(stopped.result.counters.expanded, 64u);
   o.stop_when = [] { return false; };
-  EXPECT_EQ(solve_grid(p, o).status, Status::solved);
+  EXPECT_EQ(solve_grid(p, o).result.status, Status::solved);
 }
 
 TEST(Stop, TwoPlannersShareOneWorldWhileAThirdCancels) {

@@ -3,6 +3,7 @@
 // analysis needs: the problem as actually solved (adjusted start/goal, threshold, density),
 // the options, the result and its counters.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,10 +12,13 @@
 
 namespace hpcplan {
 
-// The one Result (path of lattice states, cost, hops, counters) plus the problem as solved, the
-// options and the distributed run's figures.
-struct GridReport : Result<std::vector<int>> {
-  // Problem as solved.
+// What a grid run reports, in four parts: the problem as solved (adjusted start and goal,
+// threshold, density), the options as run, how the work was spread over ranks, and the one
+// Result (path of lattice states, cost, hops, counters). A distributed run with
+// --compare-serial adds the serial engine's figures for the same problem.
+
+// The problem as solved.
+struct GridProblemReport {
   int dims = 0;
   int extent = 0;
   std::uint64_t seed = 0;
@@ -25,16 +29,23 @@ struct GridReport : Result<std::vector<int>> {
   std::string connectivity;
   std::vector<int> start, goal;
   bool start_adjusted = false, goal_adjusted = false;
-  int key_words = 1;
-  // Options.
+  double straight_line = 0.0;  // |goal - start|, the denominator of quality
+};
+
+// The search as run.
+struct GridOptionsReport {
   std::string algorithm;
   double weight = 1.0;
   std::string heuristic;
   std::uint64_t max_states = 0;
-  std::string visited_map;
+  int key_words = 1;             // 64-bit words per packed state
+  std::string visited_map;       // the state store used
   std::string pruning = "none";  // none | jump_points (2D A*; its path is still unit moves)
+};
+
+// How the work was spread over ranks and exchanged.
+struct GridDistribution {
   int ranks = 1;
-  // Distributed runs: how states were spread and exchanged.
   std::string scheme = "serial";  // serial | async | bulk_sync | level_sync
   int coarsen_shift = 0;
   int slab_width = 0;  // > 0: ownership by slabs of this width along the last axis
@@ -43,17 +54,29 @@ struct GridReport : Result<std::vector<int>> {
   double batch_age_ms = 0.0;
   std::uint64_t sync_every = 0;
   std::vector<search::RankCounters> per_rank;
-  // Serial reference run of the same problem (distributed runs with --compare-serial).
-  bool has_serial_reference = false;
-  search::Status serial_status = search::Status::no_path;
-  double serial_cost = 0.0;
-  std::uint64_t serial_hops = 0;
-  std::uint64_t serial_expanded = 0;
-  double serial_time_ms = 0.0;
-  // Beyond the Result.
-  double straight_line = 0.0;
+};
+
+// The serial engine on the same problem, run first by rank 0 (--compare-serial).
+struct SerialReference {
+  search::Status status = search::Status::no_path;
+  double cost = 0.0;
+  std::uint64_t hops = 0;
+  std::uint64_t expanded = 0;
+  double time_ms = 0.0;
+};
+
+// The one Result, plus what is derived from it.
+struct GridResult : Result<std::vector<int>> {
   double quality = 0.0;  // cost / straight_line (seed 002 eq. 2)
   double setup_ms = 0.0;
+};
+
+struct GridReport {
+  GridProblemReport problem;
+  GridOptionsReport options;
+  GridDistribution distribution;
+  GridResult result;
+  std::optional<SerialReference> serial;
 };
 
 // The serial search. Its visited map is chosen by the lattice's size: where the packed keys fit

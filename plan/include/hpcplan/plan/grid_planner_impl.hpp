@@ -62,29 +62,31 @@ inline bool uses_jump_points(const GridProblem& problem, const GridSearchOptions
 template <class MapPolicy, int W, class Graph>
 void search_into_report(const Graph& graph, const GridProblem& problem, const GridSearchOptions& o,
                         GridReport& report) {
-  const auto start = graph.pack(report.start);
-  const auto goal = graph.pack(report.goal);
-  auto eo = engine_options(o, report.weight, report.max_states);
+  const auto start = graph.pack(report.problem.start);
+  const auto goal = graph.pack(report.problem.goal);
+  auto eo = engine_options(o, report.options.weight, report.options.max_states);
   if constexpr (std::is_same_v<MapPolicy, search::StampedDensePolicy>)
     eo.dense_keys = graph.layout().dense_index_bound();
-  RunProgress progress("hpcplan grid " + report.algorithm, report.max_states);
+  RunProgress progress("hpcplan grid " + report.options.algorithm, report.options.max_states);
   eo.progress = [&progress](std::uint64_t expanded, std::uint64_t stored) {
     progress.update(expanded, stored);
   };
 
-  const auto r = with_heuristic<W>(o, problem, graph.layout(), report.goal, [&](const auto& h) {
-    return search::best_first_search<MapPolicy>(graph, start, goal, h, eo);
-  });
-  report.status = r.status;
-  report.cost = r.cost;
-  report.counters = r.counters;
-  report.visited_map = MapPolicy::name;
+  const auto r =
+      with_heuristic<W>(o, problem, graph.layout(), report.problem.goal, [&](const auto& h) {
+        return search::best_first_search<MapPolicy>(graph, start, goal, h, eo);
+      });
+  GridResult& out = report.result;
+  out.status = r.status;
+  out.cost = r.cost;
+  out.counters = r.counters;
+  report.options.visited_map = MapPolicy::name;
   auto take_path = [&](const auto& moves) {
-    report.hops = moves.empty() ? 0 : moves.size() - 1;
+    out.hops = moves.empty() ? 0 : moves.size() - 1;
     if (o.keep_path)
       for (const auto& s : moves) {
         const auto c = graph.unpack(s);
-        report.path.emplace_back(c.begin(), c.end());
+        out.path.emplace_back(c.begin(), c.end());
       }
   };
   if constexpr (requires { graph.unit_steps(r.path); })
@@ -99,8 +101,9 @@ void run_search(const GogField& field, const GridProblem& problem, const GridSea
   if constexpr (W == 1) {
     if (uses_jump_points(problem, o)) {
       const GogCells2D cells(field);
-      const JumpPointGraph<GogCells2D> graph(cells, {report.goal[0], report.goal[1]});
-      report.pruning = "jump_points";
+      const JumpPointGraph<GogCells2D> graph(cells,
+                                             {report.problem.goal[0], report.problem.goal[1]});
+      report.options.pruning = "jump_points";
       return search_into_report<MapPolicy, 1>(graph, problem, o, report);
     }
   }
@@ -119,10 +122,10 @@ GridReport solve_grid_with(const GogField& field, const GridProblem& problem,
   validate(problem, options);
   Stopwatch setup;
   GridReport report = prepare_grid_report(problem, options, field, 1);
-  report.setup_ms = setup_ms + setup.milliseconds();
+  report.result.setup_ms = setup_ms + setup.milliseconds();
   using Wide = std::conditional_t<std::is_same_v<MapPolicy, search::StampedDensePolicy>,
                                   search::DefaultVisitedMap, MapPolicy>;
-  switch (report.key_words) {
+  switch (report.options.key_words) {
     case 1:
       detail::run_search<MapPolicy, 1>(field, problem, options, report);
       break;
