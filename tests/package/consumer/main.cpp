@@ -31,7 +31,7 @@ int main() {
 
   std::printf("box map: %s %.3f; lattice: %s %.3f; launched by MPI: %d; fluid: %s\n",
               std::string(to_string(p.status)).c_str(), p.cost,
-              std::string(to_string(g.status)).c_str(), g.cost, mpi::launched_by_mpi() ? 1 : 0,
-              fluid_ok ? "ok" : "unsound");
-  return p.status == Status::solved && g.status == Status::solved && fluid_ok ? 0 : 1;
+              std::string(to_string(g.result.status)).c_str(), g.result.cost,
+              mpi::launched_by_mpi() ? 1 : 0, fluid_ok ? "ok" : "unsound");
+  return p.status == Status::solved && g.result.status == Status::solved && fluid_ok ? 0 : 1;
 }
