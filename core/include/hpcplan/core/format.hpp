@@ -1,4 +1,6 @@
 #pragma once
+#include <cstdint>
+#include <cstdio>
 #include <span>
 #include <string>
 
@@ -12,6 +14,20 @@ inline std::string join_coordinates(std::span<const int> coords) {
     out.append(std::to_string(coords[i]));
   }
   return out;
+}
+
+// "3.25 GB": bytes in decimal units with three significant digits, for messages.
+inline std::string format_bytes(std::uint64_t bytes) {
+  static const char* units[] = {"B", "kB", "MB", "GB", "TB", "PB", "EB"};
+  double v = static_cast<double>(bytes);
+  int u = 0;
+  while (v >= 1000.0 && u < 6) {
+    v /= 1000.0;
+    ++u;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, u == 0 ? "%.0f %s" : "%.3g %s", v, units[u]);
+  return text;
 }
 
 }  // namespace hpcplan

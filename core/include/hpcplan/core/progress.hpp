@@ -5,6 +5,7 @@
 // take as long as the finished ones on average.
 #include <unistd.h>
 
+#include <cstdarg>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -96,6 +97,36 @@ class RunProgress {
   bool shown_ = false;
   double last_ = 0.0;
   Stopwatch clock_;
+};
+
+// One progress line, rewritten in place on a terminal (a line per call otherwise), under the
+// same rule as Progress. The caller decides when to show it.
+class ProgressLine {
+ public:
+  ProgressLine() : tty_(::isatty(STDERR_FILENO) == 1), enabled_(progress_wanted(tty_)) {}
+  ~ProgressLine() {
+    if (shown_ && tty_) std::fputc('\n', stderr);
+  }
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+  bool enabled() const { return enabled_; }
+
+  [[gnu::format(printf, 2, 3)]] void show(const char* format, ...) {
+    if (!enabled_) return;
+    shown_ = true;
+    if (tty_) std::fputc('\r', stderr);
+    va_list args;
+    va_start(args, format);
+    std::vfprintf(stderr, format, args);
+    va_end(args);
+    std::fputs(tty_ ? "\033[K" : "\n", stderr);
+    std::fflush(stderr);
+  }
+
+ private:
+  bool tty_;
+  bool enabled_;
+  bool shown_ = false;
 };
 
 }  // namespace hpcplan

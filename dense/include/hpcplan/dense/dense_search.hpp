@@ -1,0 +1,87 @@
+#pragma once
+// The dense lattice engine: exhaustive searches of the whole GOG lattice at one bit per state,
+// whole 64-bit tiles per operation (tile_moves.hpp).
+//
+//   BFS: level-synchronous. A state's 2-bit code is 0 (not reached) or its level mod 3 + 1, so
+//   the path is walked back from the goal (a predecessor of a level-L state has level L - 1,
+//   and neighbours' levels differ by at most one, so level mod 3 tells it apart). Frontiers are
+//   lists of (tile, bits) entries, deduplicated by one mark bit per tile.
+//
+//   Dijkstra: every move costs sqrt k for k axes, so a path cost is a + b sqrt2 + c sqrt3 with
+//   integers (graph/lattice_cost.hpp): equal costs are equal exactly, and the states of one cost
+//   value form one "class". Classes are processed in increasing value; a state settles in the
+//   first class that holds it, which is its cost, because every class still pending is at least
+//   as large (a processed class only creates classes larger by a move's cost, >= 1). Classes are
+//   processed in buckets [k, k + 1): no state of a bucket can reach another state of the same
+//   bucket (every move costs at least 1), so the states of a bucket settle in one pass, and the
+//   ranks and threads exchange once per bucket. Memory: a settled bit per state, the pending
+//   classes' lists, and, with a path, the settling class of every state (4 bytes).
+//
+// Slabs along the last axis: each rank holds the layers of one slab (slab_plan.hpp) and sends
+// the targets that fall in a neighbour's slab to it once per level or bucket
+// (slab_transport.hpp); within a rank, each OpenMP thread owns a sub-slab, and targets in
+// another thread's sub-slab go through the same kind of outbox, applied by their owner after a
+// barrier, so no word is written by two threads and no atomics are used. Results (status,
+// cost, hops, path, counters) do not depend on the number of ranks or threads.
+//
+// Threads: search() uses `threads` OpenMP threads inside; the field may be shared read-only.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hpcplan/core/result.hpp"
+#include "hpcplan/core/stop.hpp"
+#include "hpcplan/dense/slab_transport.hpp"
+#include "hpcplan/env/gog.hpp"
+#include "hpcplan/graph/lattice_graph.hpp"
+
+namespace hpcplan::dense {
+
+enum class Algorithm { bfs, dijkstra };
+
+struct Query {
+  std::vector<int> start, goal;  // free lattice states
+  Algorithm algorithm = Algorithm::bfs;
+  Connectivity connectivity = Connectivity::seed_pairs;
+  int threads = 1;                       // OpenMP threads of this rank (>= 1)
+  bool keep_path = false;                // return the path (BFS always walks it for its cost)
+  std::uint64_t memory_budget = 0;       // bytes this rank may use; 0 = no limit
+  Stop stop;                             // polled between chunks of a level or class
+  std::string progress_label;            // non-empty: progress lines on runs over 2 s
+};
+
+// What the engine did beyond the counters.
+struct Figures {
+  int in_tile_axes = 2;             // 2: 8 x 8 tiles on axes 0 and 1; 1: rows of 64 on axis 0
+  std::uint64_t tiles = 0;          // tiles of the whole lattice
+  std::uint64_t free_states = 0;    // free states of the whole lattice (exact)
+  std::uint64_t reached = 0;        // states reached (BFS) or settled (Dijkstra)
+  std::uint64_t bytes_per_rank = 0;  // the most any rank allocated (its slab's store, marks,
+                                     // window table, frontier lists at their peak)
+  std::uint64_t bytes_total = 0;     // summed over ranks
+  std::uint64_t bytes_needed = 0;    // this rank's planned bytes before the run (the check)
+  std::uint64_t levels = 0;          // BFS levels, or Dijkstra classes processed
+  std::uint64_t buckets = 0;         // Dijkstra buckets (exchanges)
+  int threads = 1;
+  int ranks = 1;
+  std::vector<int> slab_layers;      // ranks + 1 layer bounds
+  std::uint64_t halo_messages = 0;   // summed over ranks
+  std::uint64_t halo_bytes = 0;
+  double exchange_ms = 0.0;          // the slowest rank's time in exchanges and reductions
+  std::vector<double> rank_search_ms;  // per rank
+  std::vector<std::uint64_t> rank_expanded;
+};
+
+struct Result : hpcplan::Result<std::vector<int>> {
+  Figures figures;
+};
+
+// The bytes a rank of `ranks` will allocate for this query before its lists grow (the store,
+// marks, window table and a first frontier reserve), and whether 8 x 8 tiles are used.
+std::uint64_t planned_bytes(const GogField& field, const Query& query, int ranks);
+
+// Runs the query on this rank's slab; collective over the transport's ranks. InputError if the
+// planned bytes exceed the budget (one line naming both), before anything large is allocated.
+Result search(const GogField& field, const Query& query, SlabTransport& transport);
+
+}  // namespace hpcplan::dense

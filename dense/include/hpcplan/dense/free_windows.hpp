@@ -1,0 +1,66 @@
+#pragma once
+// The free masks the dense kernels read, built once from the GOG field's per-axis level
+// tables. GOG is separable: a state is free when its per-axis levels sum below the threshold.
+// So a tile's free mask depends only on its in-tile coordinates (the 64 cells' levels along
+// axes 0 and 1) and on tau = threshold - the sum of its word axes' levels (one cell per tile
+// along those). Every mask a move needs is that of a "window": the tile shifted by -1, 0 or +1
+// cell along each in-tile axis, whose bit p says whether cell p + offset is free; a step along
+// a word axis only changes tau by that axis's level change. The table holds every window at
+// every in-tile position for every tau a move can reach, so each corner check of a move is one
+// read (no shifts, no per-state formula).
+//
+// Cells outside the box are never free: in-tile neighbours past an edge read padded table rows
+// of zero masks, and a word-axis step out of the box moves tau to a value whose masks are zero.
+//
+// Threads: immutable once built.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "hpcplan/dense/tile_layout.hpp"
+#include "hpcplan/env/gog.hpp"
+
+namespace hpcplan::dense {
+
+class FreeWindows {
+ public:
+  // max_word_steps: the most word axes one move's corner may step along (2 for the seed rule,
+  // up to dims for full connectivity): it sets the range of tau the table covers.
+  FreeWindows(const GogField& field, const TileLayout& layout, int max_word_steps);
+
+  // The table's size for a layout, without building it (the engine picks rows over 8 x 8 tiles
+  // when it would be too large).
+  static std::uint64_t table_bytes(const TileLayout& layout, int threshold, int max_word_steps);
+
+  // Windows: in-tile offsets (o0, o1) in {-1, 0, 1}; rows (one in-tile axis) fill only o1 = 0.
+  static constexpr int window(int o0, int o1 = 0) { return (o0 + 1) + 3 * (o1 + 1); }
+  static constexpr int kWindows = 9;
+
+  // Where one tile's masks are read.
+  struct At {
+    const Word* row;  // mask(w, tau') = row[w * stride + tau']
+    int tau;          // threshold minus the word axes' levels of this tile
+    std::array<int, kMaxDims> minus{}, plus{};  // tau change of a step -1 / +1 along a word axis
+  };
+  void locate(const int* tile_coords, At& at) const;
+  int stride() const { return range_; }
+  Word mask(const At& at, int window, int tau) const { return at.row[window * range_ + tau]; }
+  // The free mask of the tile itself.
+  Word free_mask(const int* tile_coords) const {
+    At at;
+    locate(tile_coords, at);
+    return mask(at, window(0, 0), at.tau);
+  }
+  std::uint64_t bytes() const { return table_.size() * sizeof(Word); }
+
+ private:
+  const TileLayout& layout_;
+  int threshold_;
+  int out_of_box_;  // tau change of a step out of the box: drives every mask to zero
+  int tau_offset_;  // table index of tau = 0
+  int range_;       // taus covered per window
+  std::vector<Word> table_;
+  std::vector<std::vector<int>> levels_;  // per axis, coordinate -1 .. extent (shifted by one)
+};
+
+}  // namespace hpcplan::dense

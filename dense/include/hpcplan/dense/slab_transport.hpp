@@ -1,0 +1,60 @@
+#pragma once
+// What the dense engine needs from the ranks around it, and nothing more: each rank holds one
+// slab of layers along the last axis, so a level (or a bucket of cost classes) ends with one
+// exchange with the two neighbouring ranks and one small reduction over all. The engine never
+// calls MPI; the MPI implementation lives in the distributed layer (as Graph500's reference
+// BFS keeps its communication apart from the algorithm), and LocalTransport is the one-rank
+// case, which is the serial engine.
+//
+// Threads: called from one thread of each rank (the engine's master thread), collectively:
+// every rank makes the same calls in the same order.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace hpcplan::dense {
+
+class SlabTransport {
+ public:
+  virtual ~SlabTransport() = default;
+  virtual int rank() const = 0;
+  virtual int ranks() const = 0;
+  // Ranks sharing this rank's node (they share its memory budget).
+  virtual int ranks_on_node() const { return 1; }
+  // Sends `down` to rank - 1 and `up` to rank + 1 (ignored where there is none) and returns
+  // what those ranks sent this one.
+  virtual void exchange(std::span<const std::byte> down, std::span<const std::byte> up,
+                        std::vector<std::byte>& from_below, std::vector<std::byte>& from_above) = 0;
+  // Element-wise over all ranks, in place.
+  virtual void sum(std::span<std::uint64_t> values) = 0;
+  virtual void max(std::span<std::uint64_t> values) = 0;
+  virtual void min(std::span<double> values) = 0;
+  // Gathers `bytes` bytes from every rank on every rank (rank order).
+  virtual std::vector<std::byte> allgather(std::span<const std::byte> mine) = 0;
+
+  // What the exchanges cost this rank.
+  std::uint64_t messages_sent = 0;
+  std::uint64_t bytes_sent = 0;
+  double exchange_ms = 0.0;  // inside exchange() and the reductions
+};
+
+// One rank: nothing to exchange, reductions are the identity.
+class LocalTransport final : public SlabTransport {
+ public:
+  int rank() const override { return 0; }
+  int ranks() const override { return 1; }
+  void exchange(std::span<const std::byte>, std::span<const std::byte>,
+                std::vector<std::byte>& from_below, std::vector<std::byte>& from_above) override {
+    from_below.clear();
+    from_above.clear();
+  }
+  void sum(std::span<std::uint64_t>) override {}
+  void max(std::span<std::uint64_t>) override {}
+  void min(std::span<double>) override {}
+  std::vector<std::byte> allgather(std::span<const std::byte> mine) override {
+    return {mine.begin(), mine.end()};
+  }
+};
+
+}  // namespace hpcplan::dense

@@ -1,0 +1,426 @@
+#pragma once
+// Exact Dijkstra on the dense lattice by cost classes (dense_search.hpp states why the order is
+// exact). A class is an exact path cost (ones + root2 sqrt2 + root3 sqrt3) with its move count;
+// its states are lists of (tile, bits). Each thread keeps the classes of its sub-slab in value
+// order. A bucket [k, k + 1) is processed in one pass: each thread takes its classes below
+// k + 1 in order, settles the bits not yet settled (the first class to hold a state is its
+// cost), and files the targets into the classes one move more expensive, its own or, past its
+// sub-slab, an outbox. Then one exchange and one reduction (the next bucket is the floor of the
+// smallest pending class anywhere; the goal settled; nothing left; a stop).
+#include <limits>
+#include <map>
+
+#include "engine_common.hpp"
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/dense/zeroed_words.hpp"
+
+namespace hpcplan::dense::detail {
+
+// An exact cost and the moves that make it. Classes are ordered by cost, then by fewer moves
+// (full connectivity: two unit moves cost what one four-axis move does).
+struct ClassKey {
+  std::int32_t ones = 0, root2 = 0, root3 = 0, hops = 0;
+
+  double value() const { return LatticeCost{ones, root2, root3}.value(); }
+  ClassKey after(int axes) const {
+    const LatticeCost c = LatticeCost{ones, root2, root3} + LatticeCost::for_axes(axes);
+    return {c.ones, c.root2, c.root3, hops + 1};
+  }
+  friend bool operator==(const ClassKey&, const ClassKey&) = default;
+  friend bool operator<(const ClassKey& a, const ClassKey& b) {
+    const double va = a.value(), vb = b.value();
+    if (va != vb) return va < vb;
+    return a.hops < b.hops;
+  }
+  // Four 16-bit fields, for the per-state record of a path run.
+  std::uint64_t packed() const {
+    return static_cast<std::uint64_t>(ones) | static_cast<std::uint64_t>(root2) << 16 |
+           static_cast<std::uint64_t>(root3) << 32 | static_cast<std::uint64_t>(hops) << 48;
+  }
+  bool packable() const {
+    return ones >= 0 && ones < 65536 && root2 >= 0 && root2 < 65536 && root3 >= 0 &&
+           root3 < 65536 && hops >= 0 && hops < 65535;
+  }
+};
+
+struct ClassEntry {
+  std::uint64_t tile;
+  Word bits;
+  ClassKey key;
+};
+
+template <int D, int K, class Kernel>
+class CostClassDijkstra {
+ public:
+  CostClassDijkstra(const GogField& field, const Query& q, SlabTransport& tr,
+                    const TileLayout& layout, const FreeWindows& windows, const Kernel& kernel,
+                    const Slabs& slabs)
+      : field_(field),
+        q_(q),
+        tr_(tr),
+        layout_(layout),
+        windows_(windows),
+        kernel_(kernel),
+        slabs_(slabs) {
+    for (int a = 0; a < D; ++a) stride_[a] = layout.stride(a);
+  }
+
+  // Settled bits, and with a path each state's class (8 bytes a state).
+  static std::uint64_t store_bytes(std::uint64_t tiles, bool keep_path) {
+    return tiles * 8 + (keep_path ? tiles * 64 * 8 : 0) + 64;
+  }
+
+  Result run() {
+    Result res;
+    Stopwatch clock;
+    const std::uint64_t tiles = slabs_.b1 - slabs_.b0;
+    settled_ = ZeroedWords(tiles);
+    if (q_.keep_path) keys_ = ZeroedWords(tiles * 64);
+    threads_.resize(slabs_.threads);
+    for (int t = 0; t < slabs_.threads; ++t) {
+      threads_[t].b0 = slabs_.thread_tiles[t];
+      threads_[t].b1 = slabs_.thread_tiles[t + 1];
+    }
+    const std::uint64_t start_tile = layout_.tile_of(q_.start);
+    goal_tile_ = layout_.tile_of(q_.goal);
+    goal_bit_ = Word{1} << layout_.bit_of(q_.goal);
+    if (!slabs_.empty() && start_tile >= slabs_.b0 && start_tile < slabs_.b1) {
+      Thread& th = threads_[thread_of(start_tile)];
+      th.pending[ClassKey{}].push_back({start_tile, Word{1} << layout_.bit_of(q_.start)});
+    }
+    const std::uint64_t fixed = settled_.bytes() + keys_.bytes() + windows_.bytes();
+
+    DenseProgress progress(q_.progress_label, 0);
+    double bucket = 0.0;
+    std::uint64_t buckets = 0, settled_total = 0, peak_pending = 1;
+    Status status = Status::no_path;
+    bool solved = false, done = false;
+    std::vector<std::byte> in_low_bytes, in_high_bytes;
+    std::vector<ClassEntry> in_low, in_high;
+    const std::uint64_t budget = q_.memory_budget;
+    std::uint64_t list_peak = 0;
+
+#pragma omp parallel num_threads(slabs_.threads) if (slabs_.threads > 1)
+    {
+      const int id = omp_get_thread_num();
+      Thread& me = threads_[id];
+      while (!done) {
+        std::size_t n = 0;
+        bool stopped = false;
+        while (!stopped && !me.pending.empty() && me.pending.begin()->first.value() < bucket + 1) {
+          auto node = me.pending.extract(me.pending.begin());
+          const ClassKey key = node.key();
+          std::vector<Entry>& list = node.mapped();
+          sort_and_merge(list);
+          ++me.classes;
+          // Where this class's targets go, per move length (axes 1..4).
+          std::vector<Entry>* into[5] = {};
+          for (const Entry& e : list) {
+            if ((++n & 1023) == 0 && poll_stop(me)) {
+              stopped = true;
+              break;
+            }
+            Word& s = settled_[e.tile - slabs_.b0];
+            const Word fresh = e.bits & ~s;
+            if (!fresh) continue;
+            s |= fresh;
+            me.settled += static_cast<std::uint64_t>(std::popcount(fresh));
+            if (q_.keep_path) record(e.tile, fresh, key);
+            if (e.tile == goal_tile_ && (fresh & goal_bit_)) {
+              me.goal_hit = true;
+              me.goal_key = key;
+            }
+            expand(me, e.tile, fresh, key, into);
+          }
+          me.recycle(std::move(list));
+        }
+        if (budget && list_bytes(me) * slabs_.threads + fixed > budget)
+          me.stop = std::max(me.stop, 2);
+#pragma omp barrier
+#pragma omp master
+        {
+          tr_.exchange(as_bytes_of(threads_.front().out_low), as_bytes_of(threads_.back().out_high),
+                       in_low_bytes, in_high_bytes);
+          from_bytes(in_low_bytes, in_low);
+          from_bytes(in_high_bytes, in_high);
+        }
+#pragma omp barrier
+        if (id > 0)
+          for (const ClassEntry& e : threads_[id - 1].out_high) file(me, e);
+        if (id + 1 < slabs_.threads)
+          for (const ClassEntry& e : threads_[id + 1].out_low) file(me, e);
+        if (id == 0)
+          for (const ClassEntry& e : in_low) file(me, e);
+        if (id + 1 == slabs_.threads)
+          for (const ClassEntry& e : in_high) file(me, e);
+#pragma omp barrier
+#pragma omp master
+        {
+          std::uint64_t maxes[2] = {0, 0};
+          std::uint64_t sums[2] = {0, 0};
+          double next = std::numeric_limits<double>::infinity();
+          std::uint64_t lists = 0;
+          for (Thread& t : threads_) {
+            maxes[0] |= t.goal_hit ? 1 : 0;
+            maxes[1] = std::max<std::uint64_t>(maxes[1], t.stop);
+            sums[0] += t.settled_now();
+            sums[1] += t.pending_entries();
+            if (!t.pending.empty()) next = std::min(next, t.pending.begin()->first.value());
+            lists += list_bytes(t);
+          }
+          list_peak = std::max(list_peak, lists);
+          tr_.max(maxes);
+          tr_.sum(sums);
+          tr_.min(std::span<double>(&next, 1));
+          ++buckets;
+          settled_total += sums[0];
+          peak_pending = std::max(peak_pending, sums[1]);
+          if (maxes[0]) {
+            solved = true;
+            done = true;
+          } else if (maxes[1]) {
+            status = maxes[1] == 3 ? Status::cancelled
+                     : maxes[1] == 2 ? Status::budget_exceeded
+                                     : Status::timeout;
+            done = true;
+          } else if (!std::isfinite(next)) {
+            status = Status::no_path;
+            done = true;
+          } else {
+            bucket = std::floor(next);
+          }
+          progress.update("cost", bucket, settled_total);
+        }
+#pragma omp barrier
+        me.out_low.clear();
+        me.out_high.clear();
+      }
+    }
+
+    Counters& k = res.counters;
+    std::uint64_t local[3] = {0, 0, 0};
+    for (const Thread& t : threads_) {
+      local[0] += t.settled;
+      local[1] += t.generated;
+      local[2] += t.classes;
+    }
+    res.figures.rank_expanded = gather_u64(local[0]);
+    res.figures.rank_search_ms = gather_double(clock.milliseconds());
+    tr_.sum(std::span<std::uint64_t>(local, 2));
+    tr_.max(std::span<std::uint64_t>(local + 2, 1));
+    k.expanded = local[0];
+    k.generated = local[1];
+    k.peak_states = local[0];
+    k.peak_open = peak_pending;
+    res.figures.levels = local[2];
+    res.figures.buckets = buckets;
+    res.figures.reached = local[0];
+    res.figures.bytes_needed = fixed;
+    std::uint64_t bytes[2] = {fixed + list_peak, fixed + list_peak};
+    tr_.max(std::span<std::uint64_t>(bytes, 1));
+    tr_.sum(std::span<std::uint64_t>(bytes + 1, 1));
+    res.figures.bytes_per_rank = bytes[0];
+    res.figures.bytes_total = bytes[1];
+    if (solved) {
+      const ClassKey goal = goal_class();
+      res.status = Status::solved;
+      res.cost = goal.value();
+      res.hops = static_cast<std::uint64_t>(goal.hops);
+      if (q_.keep_path) {
+        res.path = walk_back(goal);
+        res.hops = res.path.size() - 1;
+      }
+    } else {
+      res.status = status;
+    }
+    k.time_ms = clock.milliseconds();
+    return res;
+  }
+
+ private:
+  struct Thread {
+    std::map<ClassKey, std::vector<Entry>> pending;
+    std::vector<ClassEntry> out_low, out_high;
+    std::vector<std::vector<Entry>> spare;  // emptied lists, reused for new classes
+    std::uint64_t b0 = 0, b1 = 0;
+    std::uint64_t settled = 0, generated = 0, classes = 0, reported = 0;
+    bool goal_hit = false;
+    ClassKey goal_key;
+    int stop = 0;
+
+    std::uint64_t settled_now() {
+      const std::uint64_t d = settled - reported;
+      reported = settled;
+      return d;
+    }
+    std::uint64_t pending_entries() const {
+      std::uint64_t n = 0;
+      for (const auto& [key, list] : pending) n += list.size();
+      return n;
+    }
+    void recycle(std::vector<Entry>&& list) {
+      list.clear();
+      if (spare.size() < 64) spare.push_back(std::move(list));
+    }
+    std::vector<Entry>& class_list(const ClassKey& key) {
+      auto [it, inserted] = pending.try_emplace(key);
+      if (inserted && !spare.empty()) {
+        it->second = std::move(spare.back());
+        spare.pop_back();
+      }
+      return it->second;
+    }
+  };
+
+  int thread_of(std::uint64_t tile) const {
+    int t = 0;
+    while (tile >= slabs_.thread_tiles[t + 1]) ++t;
+    return t;
+  }
+  static std::uint64_t list_bytes(const Thread& t) {
+    std::uint64_t n = (t.out_low.capacity() + t.out_high.capacity()) * sizeof(ClassEntry);
+    for (const auto& [key, list] : t.pending) n += list.capacity() * sizeof(Entry) + 64;
+    for (const auto& list : t.spare) n += list.capacity() * sizeof(Entry);
+    return n;
+  }
+  bool poll_stop(Thread& me) const {
+    if (!q_.stop.can_stop()) return false;
+    if (const auto s = q_.stop.check()) {
+      me.stop = std::max(me.stop, *s == Status::cancelled ? 3 : 1);
+      return true;
+    }
+    return false;
+  }
+
+  void record(std::uint64_t tile, Word fresh, const ClassKey& key) {
+    if (!key.packable())
+      throw RunError("dense Dijkstra: a path cost beyond 65,535 moves of one kind cannot be "
+                     "recorded for --path; run without --path");
+    std::uint64_t* k = keys_.data() + (tile - slabs_.b0) * 64;
+    for (Word w = fresh; w; w &= w - 1) k[std::countr_zero(w)] = key.packed() + 1;
+  }
+
+  // A target outside this thread's tiles goes to an outbox; inside, into its class's list
+  // unless already settled.
+  void expand(Thread& me, std::uint64_t tile, Word fresh, const ClassKey& key,
+              std::vector<Entry>** into) {
+    int t[kMaxDims];
+    layout_.tile_coords(tile, t);
+    FreeWindows::At at;
+    windows_.locate(t, at);
+    const std::uint64_t b0 = me.b0, b1 = me.b1;
+    me.generated += kernel_.template expand<true>(
+        fresh, at, windows_.stride(), stride_.data(), [&](std::int64_t delta, Word bits, int axes) {
+          const std::uint64_t u = tile + static_cast<std::uint64_t>(delta);
+          if (u >= b0 && u < b1) {
+            const Word open = bits & ~settled_[u - slabs_.b0];
+            if (!open) return;
+            if (!into[axes]) into[axes] = &me.class_list(key.after(axes));
+            into[axes]->push_back({u, open});
+          } else {
+            (u < b0 ? me.out_low : me.out_high).push_back({u, bits, key.after(axes)});
+          }
+        });
+  }
+
+  void file(Thread& me, const ClassEntry& e) {
+    const Word open = e.bits & ~settled_[e.tile - slabs_.b0];
+    if (open) me.class_list(e.key).push_back({e.tile, open});
+  }
+
+  std::vector<std::uint64_t> gather_u64(std::uint64_t v) {
+    const auto bytes = tr_.allgather(std::as_bytes(std::span<const std::uint64_t>(&v, 1)));
+    std::vector<std::uint64_t> out(bytes.size() / sizeof(v));
+    std::memcpy(out.data(), bytes.data(), out.size() * sizeof(v));
+    return out;
+  }
+  std::vector<double> gather_double(double v) {
+    const auto bytes = tr_.allgather(std::as_bytes(std::span<const double>(&v, 1)));
+    std::vector<double> out(bytes.size() / sizeof(v));
+    std::memcpy(out.data(), bytes.data(), out.size() * sizeof(v));
+    return out;
+  }
+
+  // The goal's class, from the rank that settled it.
+  ClassKey goal_class() {
+    struct Found {
+      std::int32_t hit;
+      ClassKey key;
+    } mine{0, {}};
+    for (const Thread& t : threads_)
+      if (t.goal_hit) mine = {1, t.goal_key};
+    const auto all = tr_.allgather(std::as_bytes(std::span<const Found>(&mine, 1)));
+    for (std::size_t i = 0; i + sizeof(Found) <= all.size(); i += sizeof(Found)) {
+      Found f;
+      std::memcpy(&f, all.data() + i, sizeof f);
+      if (f.hit) return f.key;
+    }
+    throw std::logic_error("dense Dijkstra: goal settled but no rank holds its class");
+  }
+
+  // From the goal back to the start: the first move, in the fixed order, from a state whose
+  // class is this state's class less that move.
+  std::vector<std::vector<int>> walk_back(ClassKey at_key) {
+    const auto offsets = move_offsets(D, q_.connectivity);
+    std::vector<std::vector<int>> path{q_.goal};
+    int x[kMaxDims];
+    std::copy(q_.goal.begin(), q_.goal.end(), x);
+    while (at_key.hops > 0) {
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t j = 0; j < offsets.size() && !slabs_.empty(); ++j) {
+        int y[kMaxDims], axes = 0;
+        bool inside = true;
+        for (int a = 0; a < D; ++a) {
+          y[a] = x[a] - offsets[j][a];
+          axes += offsets[j][a] != 0;
+          inside = inside && y[a] >= 0 && y[a] < layout_.extent();
+        }
+        if (!inside) continue;
+        const int z = layout_.layer_of(std::span<const int>(y, D));
+        if (z < slabs_.z0 || z >= slabs_.z1) continue;
+        const std::uint64_t tile = layout_.tile_of(std::span<const int>(y, D));
+        const std::uint64_t stored =
+            keys_[(tile - slabs_.b0) * 64 + layout_.bit_of(std::span<const int>(y, D))];
+        if (stored == 0) continue;
+        ClassKey before;
+        before.ones = static_cast<std::int32_t>((stored - 1) & 0xFFFF);
+        before.root2 = static_cast<std::int32_t>(((stored - 1) >> 16) & 0xFFFF);
+        before.root3 = static_cast<std::int32_t>(((stored - 1) >> 32) & 0xFFFF);
+        before.hops = static_cast<std::int32_t>(((stored - 1) >> 48) & 0xFFFF);
+        if (!(before.after(axes) == at_key) || !legal_move(field_, y, offsets[j])) continue;
+        best = static_cast<double>(j);
+        break;
+      }
+      tr_.min(std::span<double>(&best, 1));
+      if (!std::isfinite(best)) throw RunError("dense Dijkstra: the walk back found no predecessor");
+      const auto& o = offsets[static_cast<std::size_t>(best)];
+      int axes = 0;
+      for (int a = 0; a < D; ++a) {
+        x[a] -= o[a];
+        axes += o[a] != 0;
+      }
+      // The predecessor's class: this one less the move.
+      const LatticeCost step = LatticeCost::for_axes(axes);
+      at_key = {at_key.ones - step.ones, at_key.root2 - step.root2, at_key.root3 - step.root3,
+                at_key.hops - 1};
+      path.emplace_back(x, x + D);
+    }
+    std::reverse(path.begin(), path.end());
+    return path;
+  }
+
+  const GogField& field_;
+  const Query& q_;
+  SlabTransport& tr_;
+  const TileLayout& layout_;
+  const FreeWindows& windows_;
+  const Kernel& kernel_;
+  const Slabs& slabs_;
+  std::array<std::int64_t, kMaxDims> stride_{};
+  ZeroedWords settled_, keys_;
+  std::vector<Thread> threads_;
+  std::uint64_t goal_tile_ = 0;
+  Word goal_bit_ = 0;
+};
+
+}  // namespace hpcplan::dense::detail

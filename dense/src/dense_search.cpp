@@ -1,0 +1,190 @@
+#include "hpcplan/dense/dense_search.hpp"
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "cost_class_dijkstra.hpp"
+#include "engine_common.hpp"
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/core/format.hpp"
+#include "level_bfs.hpp"
+
+namespace hpcplan::dense {
+namespace {
+
+// The unrolled seed-rule kernel up to this many dimensions; the move table beyond.
+constexpr int kMaxSeedKernelDims = 8;
+
+// 8 x 8 tiles unless their window table would pass this; rows of 64 then (1D always).
+constexpr std::uint64_t kMaxSquareTable = std::uint64_t{32} << 20;
+
+int max_word_steps(const Query& q, int dims) {
+  return q.connectivity == Connectivity::full ? dims : 2;
+}
+
+int in_tile_axes(const GogField& field, const Query& q) {
+  const int dims = field.dims();
+  if (dims == 1) return 1;
+  // Rows only where they are compiled for (wide 2D and 3D lattices); from 4D a lattice wide
+  // enough to need them does not fit any budget anyway.
+  if (dims > 3) return 2;
+  const TileLayout square(dims, field.extent(), 2);
+  return FreeWindows::table_bytes(square, field.threshold(), max_word_steps(q, dims)) <=
+                 kMaxSquareTable
+             ? 2
+             : 1;
+}
+
+template <int D, int K>
+struct SeedKernel {
+  template <bool kSplit, class Out>
+  [[gnu::always_inline]] std::uint64_t expand(Word f, const FreeWindows::At& at, int stride,
+                                               const std::int64_t* W, Out&& out) const {
+    return SeedMoves<D, K>::template expand<kSplit>(f, at, stride, W, out);
+  }
+};
+
+template <int K>
+struct TableKernel {
+  const TableMoves& table;
+  template <bool kSplit, class Out>
+  std::uint64_t expand(Word f, const FreeWindows::At& at, int stride, const std::int64_t* W,
+                       Out&& out) const {
+    return table.template expand<K, kSplit>(f, at, stride, W, out);
+  }
+};
+
+template <int D, int K, class Kernel>
+Result run_engine(const GogField& field, const Query& q, SlabTransport& tr,
+                  const TileLayout& layout, const FreeWindows& windows, const Kernel& kernel,
+                  const detail::Slabs& slabs) {
+  if (q.algorithm == Algorithm::bfs) {
+    detail::LevelBfs<D, K, Kernel> engine(field, q, tr, layout, windows, kernel, slabs);
+    return engine.run();
+  }
+  detail::CostClassDijkstra<D, K, Kernel> engine(field, q, tr, layout, windows, kernel, slabs);
+  return engine.run();
+}
+
+template <int D, int K>
+Result run_shape(const GogField& field, const Query& q, SlabTransport& tr) {
+  const TileLayout layout(D, field.extent(), K);
+  const FreeWindows windows(field, layout, max_word_steps(q, D));
+  const detail::Slabs slabs =
+      detail::plan_slabs(field, layout, tr.rank(), tr.ranks(), std::max(1, q.threads));
+  Result r;
+  if constexpr (D > kMaxSeedKernelDims) {
+    // Beyond 8D the seed rule runs from the move table: the unrolled kernel's code grows with
+    // d^2 and its compile time faster (8D: 19 s for one translation unit; 16D would be minutes),
+    // for lattices that are rarely wide enough to be worth it.
+    const TableMoves table(layout, 2);
+    r = run_engine<D, K>(field, q, tr, layout, windows, TableKernel<K>{table}, slabs);
+  } else {
+    if constexpr (D <= kMaxFullConnectivityDims) {
+      if (q.connectivity == Connectivity::full) {
+        const TableMoves table(layout, D);
+        r = run_engine<D, K>(field, q, tr, layout, windows, TableKernel<K>{table}, slabs);
+      }
+    }
+    if (q.connectivity != Connectivity::full)
+      r = run_engine<D, K>(field, q, tr, layout, windows, SeedKernel<D, K>{}, slabs);
+  }
+  Figures& f = r.figures;
+  f.in_tile_axes = K;
+  f.tiles = layout.tile_count();
+  f.threads = slabs.threads;
+  f.ranks = tr.ranks();
+  f.slab_layers = slabs.rank_layers;
+  // Every window mask of the table answers 64 validity questions of the field, once.
+  r.counters.collision_checks = windows.bytes() / sizeof(Word) * 64;
+  double free = 0.0;
+  for (double w : free_states_per_layer(field, layout)) free += w;
+  f.free_states = static_cast<std::uint64_t>(free + 0.5);
+  std::uint64_t halo[2] = {tr.messages_sent, tr.bytes_sent};
+  tr.sum(halo);
+  f.halo_messages = halo[0];
+  f.halo_bytes = halo[1];
+  double ex = tr.exchange_ms;
+  double neg = -ex;
+  tr.min(std::span<double>(&neg, 1));
+  f.exchange_ms = -neg;
+  return r;
+}
+
+template <int D>
+Result run_dims(const GogField& field, const Query& q, SlabTransport& tr, int k) {
+  if constexpr (D == 1) {
+    return run_shape<1, 1>(field, q, tr);
+  } else if constexpr (D <= 3) {
+    return k == 1 ? run_shape<D, 1>(field, q, tr) : run_shape<D, 2>(field, q, tr);
+  } else {
+    return run_shape<D, 2>(field, q, tr);
+  }
+}
+
+}  // namespace
+
+std::uint64_t planned_bytes(const GogField& field, const Query& q, int ranks) {
+  const int dims = field.dims();
+  const TileLayout layout(dims, field.extent(), in_tile_axes(field, q));
+  // The largest slab: slabs are balanced by free states, so a slab may hold more layers than
+  // the mean; take the plan itself.
+  const std::vector<int> bounds =
+      balanced_slabs(free_states_per_layer(field, layout), std::max(1, ranks));
+  int widest = 0;
+  for (std::size_t r = 0; r + 1 < bounds.size(); ++r)
+    widest = std::max(widest, bounds[r + 1] - bounds[r]);
+  const std::uint64_t tiles = static_cast<std::uint64_t>(widest) * layout.layer_tiles();
+  std::uint64_t bytes = FreeWindows::table_bytes(layout, field.threshold(), max_word_steps(q, dims));
+  if (q.algorithm == Algorithm::bfs) {
+    bytes += detail::LevelBfs<2, 2, SeedKernel<2, 2>>::store_bytes(tiles);
+  } else {
+    bytes += detail::CostClassDijkstra<2, 2, SeedKernel<2, 2>>::store_bytes(tiles, q.keep_path);
+  }
+  // A first frontier: one layer's tiles as entries.
+  bytes += layout.layer_tiles() * sizeof(detail::Entry);
+  return bytes;
+}
+
+Result search(const GogField& field, const Query& q, SlabTransport& tr) {
+  if (q.start.size() != static_cast<std::size_t>(field.dims()) ||
+      q.goal.size() != static_cast<std::size_t>(field.dims()))
+    throw std::logic_error("dense::search: start and goal need one coordinate per axis");
+  if (!field.is_free(q.start) || !field.is_free(q.goal))
+    throw std::logic_error("dense::search: start and goal must be free");
+  if (q.connectivity == Connectivity::full && field.dims() > kMaxFullConnectivityDims)
+    throw std::logic_error("dense::search: full connectivity is limited to d <= 4");
+  const std::uint64_t needed = planned_bytes(field, q, tr.ranks());
+  if (q.memory_budget > 0 && needed > q.memory_budget)
+    throw InputError("the dense engine needs " + format_bytes(needed) + " per rank (" +
+                     std::to_string(needed) + " bytes) for this lattice, over the budget of " +
+                     format_bytes(q.memory_budget) + " (" + std::to_string(q.memory_budget) +
+                     " bytes); raise --memory-budget, use more ranks, or --engine sparse");
+  const int k = in_tile_axes(field, q);
+  switch (field.dims()) {
+#define HPCPLAN_DENSE_DIMS(d) \
+  case d:                     \
+    return run_dims<d>(field, q, tr, k);
+    HPCPLAN_DENSE_DIMS(1)
+    HPCPLAN_DENSE_DIMS(2)
+    HPCPLAN_DENSE_DIMS(3)
+    HPCPLAN_DENSE_DIMS(4)
+    HPCPLAN_DENSE_DIMS(5)
+    HPCPLAN_DENSE_DIMS(6)
+    HPCPLAN_DENSE_DIMS(7)
+    HPCPLAN_DENSE_DIMS(8)
+    HPCPLAN_DENSE_DIMS(9)
+    HPCPLAN_DENSE_DIMS(10)
+    HPCPLAN_DENSE_DIMS(11)
+    HPCPLAN_DENSE_DIMS(12)
+    HPCPLAN_DENSE_DIMS(13)
+    HPCPLAN_DENSE_DIMS(14)
+    HPCPLAN_DENSE_DIMS(15)
+    HPCPLAN_DENSE_DIMS(16)
+#undef HPCPLAN_DENSE_DIMS
+  }
+  throw std::logic_error("dense::search: dims out of range");
+}
+
+}  // namespace hpcplan::dense

@@ -1,0 +1,351 @@
+#pragma once
+// Level-synchronous BFS on the dense lattice (dense_search.hpp describes the scheme).
+//
+// Per level, every thread expands its frontier entries (tiles of its sub-slab with bits of the
+// current level): targets in its own tiles are applied at once (bits not yet reached get the
+// next level's code; the first new bits of a tile put it on the next frontier, with the tile's
+// reached bits before the level, so the next level's frontier word is "reached now, not then"),
+// targets in a neighbour's tiles go to an outbox. After a barrier the master thread swaps the
+// rank's boundary outboxes with the neighbouring ranks; after another, each thread applies what
+// its neighbours (threads and ranks) sent it. One reduction per level decides: goal reached,
+// nothing left (no_path), or a stop.
+#include <limits>
+
+#include "engine_common.hpp"
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/dense/zeroed_words.hpp"
+
+namespace hpcplan::dense::detail {
+
+template <int D, int K, class Kernel>
+class LevelBfs {
+ public:
+  LevelBfs(const GogField& field, const Query& q, SlabTransport& tr, const TileLayout& layout,
+           const FreeWindows& windows, const Kernel& kernel, const Slabs& slabs)
+      : field_(field),
+        q_(q),
+        tr_(tr),
+        layout_(layout),
+        windows_(windows),
+        kernel_(kernel),
+        slabs_(slabs) {
+    for (int a = 0; a < D; ++a) stride_[a] = layout.stride(a);
+  }
+
+  // Bytes of the store and marks for a slab of `tiles` tiles.
+  static std::uint64_t store_bytes(std::uint64_t tiles) { return tiles * 16 + tiles / 8 + 64; }
+
+  Result run() {
+    Result res;
+    Stopwatch clock;
+    const std::uint64_t tiles = slabs_.b1 - slabs_.b0;
+    codes_ = ZeroedWords(2 * tiles);
+    threads_.resize(slabs_.threads);
+    for (int t = 0; t < slabs_.threads; ++t) {
+      Thread& th = threads_[t];
+      th.b0 = slabs_.thread_tiles[t];
+      th.b1 = slabs_.thread_tiles[t + 1];
+      th.marks = ZeroedWords((th.b1 - th.b0 + 63) / 64);
+    }
+    start_tile_ = layout_.tile_of(q_.start);
+    goal_tile_ = layout_.tile_of(q_.goal);
+    start_bit_ = Word{1} << layout_.bit_of(q_.start);
+    goal_bit_ = Word{1} << layout_.bit_of(q_.goal);
+    const bool trivial = q_.start == q_.goal;
+    if (!slabs_.empty() && owns(start_tile_)) {
+      set_code(start_tile_, start_bit_, 0);
+      Thread& th = threads_[thread_of(start_tile_)];
+      mark(th, start_tile_);
+      th.cur.push_back({start_tile_, 0});
+    }
+    const std::uint64_t fixed = codes_.bytes() + windows_.bytes() + marks_bytes();
+
+    DenseProgress progress(q_.progress_label, 0);
+    std::uint64_t level = 0;
+    std::uint64_t reached_total = 1, peak_level = 1;
+    Status status = Status::no_path;
+    bool solved = trivial;
+    bool done = trivial;
+    std::vector<std::byte> in_low_bytes, in_high_bytes;
+    std::vector<Entry> in_low, in_high;
+    const std::uint64_t budget = q_.memory_budget;
+    std::uint64_t list_peak = 0;
+
+#pragma omp parallel num_threads(slabs_.threads) if (slabs_.threads > 1)
+    {
+      const int id = omp_get_thread_num();
+      Thread& me = threads_[id];
+      while (!done) {
+        // The frontier's words: reached now, not before the level that reached them.
+        for (Entry& e : me.cur) {
+          const Word* c = code_words(e.tile);
+          e.bits = (c[0] | c[1]) & ~e.bits;
+          unmark(me, e.tile);
+        }
+        const int next_code = static_cast<int>((level + 1) % 3) + 1;
+        const Word c0 = next_code & 1 ? ~Word{0} : 0, c1 = next_code & 2 ? ~Word{0} : 0;
+        std::size_t n = 0;
+        for (const Entry& e : me.cur) {
+          if ((++n & 1023) == 0 && poll_stop(me)) break;
+          expand(me, e, c0, c1);
+        }
+        if (budget && list_bytes(me) * slabs_.threads + fixed > budget) me.stop = std::max(me.stop, 2);
+#pragma omp barrier
+#pragma omp master
+        {
+          const Thread& lo = threads_.front();
+          const Thread& hi = threads_.back();
+          tr_.exchange(as_bytes_of(lo.out_low), as_bytes_of(hi.out_high), in_low_bytes,
+                       in_high_bytes);
+          from_bytes(in_low_bytes, in_low);
+          from_bytes(in_high_bytes, in_high);
+        }
+#pragma omp barrier
+        if (id > 0)
+          for (const Entry& e : threads_[id - 1].out_high) apply(me, e.tile, e.bits, c0, c1);
+        if (id + 1 < slabs_.threads)
+          for (const Entry& e : threads_[id + 1].out_low) apply(me, e.tile, e.bits, c0, c1);
+        if (id == 0)
+          for (const Entry& e : in_low) apply(me, e.tile, e.bits, c0, c1);
+        if (id + 1 == slabs_.threads)
+          for (const Entry& e : in_high) apply(me, e.tile, e.bits, c0, c1);
+#pragma omp barrier
+#pragma omp master
+        {
+          // One reduction: new states, next frontier entries, goal reached, stop.
+          std::uint64_t sums[2] = {0, 0};
+          std::uint64_t maxes[2] = {0, 0};
+          std::uint64_t lists = 0;
+          for (const Thread& t : threads_) {
+            sums[0] += t.fresh;
+            sums[1] += t.next.size();
+            maxes[0] |= t.goal_hit ? 1 : 0;
+            maxes[1] = std::max<std::uint64_t>(maxes[1], t.stop);
+            lists += list_bytes(t);
+          }
+          list_peak = std::max(list_peak, lists);
+          tr_.sum(sums);
+          tr_.max(maxes);
+          ++level;
+          reached_total += sums[0];
+          peak_level = std::max(peak_level, sums[0]);
+          if (maxes[0]) {
+            solved = true;
+            done = true;
+          } else if (maxes[1]) {
+            status = maxes[1] == 3 ? Status::cancelled
+                     : maxes[1] == 2 ? Status::budget_exceeded
+                                     : Status::timeout;
+            done = true;
+          } else if (sums[1] == 0) {
+            status = Status::no_path;
+            done = true;
+          }
+          progress.update("level", static_cast<double>(level), reached_total);
+        }
+#pragma omp barrier
+        me.out_low.clear();
+        me.out_high.clear();
+        me.fresh = 0;
+        std::swap(me.cur, me.next);
+        me.next.clear();
+      }
+    }
+
+    Counters& k = res.counters;
+    std::uint64_t local[3] = {0, 0, 0};
+    for (const Thread& t : threads_) {
+      local[0] += t.expanded;
+      local[1] += t.generated;
+    }
+    const double search_ms = clock.milliseconds();
+    res.figures.rank_expanded = gather_u64(local[0]);
+    res.figures.rank_search_ms = gather_double(search_ms);
+    tr_.sum(std::span<std::uint64_t>(local, 2));
+    k.expanded = local[0];
+    k.generated = local[1];
+    k.peak_states = reached_total;
+    k.peak_open = peak_level;
+    res.figures.levels = level;
+    res.figures.reached = reached_total;
+    res.figures.bytes_needed = fixed;
+    std::uint64_t bytes[2] = {fixed + list_peak, fixed + list_peak};
+    tr_.max(std::span<std::uint64_t>(bytes, 1));
+    tr_.sum(std::span<std::uint64_t>(bytes + 1, 1));
+    res.figures.bytes_per_rank = bytes[0];
+    res.figures.bytes_total = bytes[1];
+    if (solved) {
+      res.status = Status::solved;
+      res.path = walk_back(level);
+      res.hops = res.path.size() - 1;
+      res.cost = path_cost(res.path).value();
+      if (!q_.keep_path) res.path.clear();
+    } else {
+      res.status = status;
+    }
+    k.time_ms = clock.milliseconds();
+    return res;
+  }
+
+ private:
+  struct Thread {
+    std::vector<Entry> cur, next, out_low, out_high;
+    std::uint64_t b0 = 0, b1 = 0;
+    ZeroedWords marks;
+    std::uint64_t expanded = 0, generated = 0, fresh = 0;
+    bool goal_hit = false;
+    int stop = 0;  // 1 timeout, 2 budget, 3 cancelled: the highest wins
+  };
+
+  bool owns(std::uint64_t tile) const { return tile >= slabs_.b0 && tile < slabs_.b1; }
+  int thread_of(std::uint64_t tile) const {
+    int t = 0;
+    while (tile >= slabs_.thread_tiles[t + 1]) ++t;
+    return t;
+  }
+  Word* code_words(std::uint64_t tile) { return codes_.data() + 2 * (tile - slabs_.b0); }
+  const Word* code_words(std::uint64_t tile) const {
+    return codes_.data() + 2 * (tile - slabs_.b0);
+  }
+  void set_code(std::uint64_t tile, Word bits, std::uint64_t level) {
+    const int code = static_cast<int>(level % 3) + 1;
+    Word* c = code_words(tile);
+    if (code & 1) c[0] |= bits;
+    if (code & 2) c[1] |= bits;
+  }
+  static void mark(Thread& t, std::uint64_t tile) {
+    const std::uint64_t i = tile - t.b0;
+    t.marks[i >> 6] |= Word{1} << (i & 63);
+  }
+  static void unmark(Thread& t, std::uint64_t tile) {
+    const std::uint64_t i = tile - t.b0;
+    t.marks[i >> 6] &= ~(Word{1} << (i & 63));
+  }
+  std::uint64_t marks_bytes() const {
+    std::uint64_t b = 0;
+    for (const Thread& t : threads_) b += t.marks.bytes();
+    return b;
+  }
+  static std::uint64_t list_bytes(const Thread& t) {
+    return (t.cur.capacity() + t.next.capacity() + t.out_low.capacity() + t.out_high.capacity()) *
+           sizeof(Entry);
+  }
+
+  bool poll_stop(Thread& me) const {
+    if (!q_.stop.can_stop()) return false;
+    if (const auto s = q_.stop.check()) {
+      me.stop = std::max(me.stop, *s == Status::cancelled ? 3 : 1);
+      return true;
+    }
+    return false;
+  }
+
+  [[gnu::always_inline]] inline void apply(Thread& me, std::uint64_t u, Word bits, Word c0,
+                                           Word c1) {
+    Word* c = code_words(u);
+    const Word old = c[0] | c[1];
+    const Word fresh = bits & ~old;
+    if (!fresh) return;
+    const std::uint64_t i = u - me.b0;
+    Word& mk = me.marks[i >> 6];
+    const Word mb = Word{1} << (i & 63);
+    if (!(mk & mb)) {
+      mk |= mb;
+      me.next.push_back({u, old});
+    }
+    c[0] |= fresh & c0;
+    c[1] |= fresh & c1;
+    me.fresh += static_cast<std::uint64_t>(std::popcount(fresh));
+    if (u == goal_tile_ && (fresh & goal_bit_)) me.goal_hit = true;
+  }
+
+  [[gnu::always_inline]] inline void expand(Thread& me, const Entry& e, Word c0, Word c1) {
+    int t[kMaxDims];
+    layout_.tile_coords(e.tile, t);
+    FreeWindows::At at;
+    windows_.locate(t, at);
+    me.expanded += static_cast<std::uint64_t>(std::popcount(e.bits));
+    const std::uint64_t b0 = me.b0, b1 = me.b1;
+    me.generated += kernel_.template expand<false>(
+        e.bits, at, windows_.stride(), stride_.data(), [&](std::int64_t delta, Word bits, int) {
+          const std::uint64_t u = e.tile + static_cast<std::uint64_t>(delta);
+          if (u >= b0 && u < b1)
+            apply(me, u, bits, c0, c1);
+          else if (u < b0)
+            me.out_low.push_back({u, bits});
+          else
+            me.out_high.push_back({u, bits});
+        });
+  }
+
+  std::vector<std::uint64_t> gather_u64(std::uint64_t v) {
+    const auto bytes = tr_.allgather(std::as_bytes(std::span<const std::uint64_t>(&v, 1)));
+    std::vector<std::uint64_t> out(bytes.size() / sizeof(v));
+    std::memcpy(out.data(), bytes.data(), out.size() * sizeof(v));
+    return out;
+  }
+  std::vector<double> gather_double(double v) {
+    const auto bytes = tr_.allgather(std::as_bytes(std::span<const double>(&v, 1)));
+    std::vector<double> out(bytes.size() / sizeof(v));
+    std::memcpy(out.data(), bytes.data(), out.size() * sizeof(v));
+    return out;
+  }
+
+  // The code (0: not reached, else level mod 3 + 1) of a state this rank holds.
+  int code_at(const int* c) const {
+    const std::uint64_t tile = layout_.tile_of(std::span<const int>(c, D));
+    const int bit = layout_.bit_of(std::span<const int>(c, D));
+    const Word* w = code_words(tile);
+    return static_cast<int>((w[0] >> bit) & 1) | static_cast<int>(((w[1] >> bit) & 1) << 1);
+  }
+
+  // From the goal (level `level`) back to the start: at each step the first move, in the fixed
+  // order, from a state of the level before whose move is legal. Every rank looks among the
+  // states it holds; one reduction picks the first.
+  std::vector<std::vector<int>> walk_back(std::uint64_t level) {
+    const auto offsets = move_offsets(D, q_.connectivity);
+    std::vector<std::vector<int>> path{q_.goal};
+    int x[kMaxDims];
+    std::copy(q_.goal.begin(), q_.goal.end(), x);
+    for (std::uint64_t l = level; l > 0; --l) {
+      const int want = static_cast<int>((l - 1) % 3) + 1;
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t j = 0; j < offsets.size() && !slabs_.empty(); ++j) {
+        int y[kMaxDims];
+        bool inside = true;
+        for (int a = 0; a < D; ++a) {
+          y[a] = x[a] - offsets[j][a];
+          inside = inside && y[a] >= 0 && y[a] < layout_.extent();
+        }
+        if (!inside) continue;
+        const int z = layout_.layer_of(std::span<const int>(y, D));
+        if (z < slabs_.z0 || z >= slabs_.z1) continue;
+        if (code_at(y) != want || !legal_move(field_, y, offsets[j])) continue;
+        best = static_cast<double>(j);
+        break;
+      }
+      tr_.min(std::span<double>(&best, 1));
+      if (!std::isfinite(best)) throw RunError("dense BFS: the walk back found no predecessor");
+      const auto& o = offsets[static_cast<std::size_t>(best)];
+      for (int a = 0; a < D; ++a) x[a] -= o[a];
+      path.emplace_back(x, x + D);
+    }
+    std::reverse(path.begin(), path.end());
+    return path;
+  }
+
+  const GogField& field_;
+  const Query& q_;
+  SlabTransport& tr_;
+  const TileLayout& layout_;
+  const FreeWindows& windows_;
+  const Kernel& kernel_;
+  const Slabs& slabs_;
+  std::array<std::int64_t, kMaxDims> stride_{};
+  ZeroedWords codes_;
+  std::vector<Thread> threads_;
+  std::uint64_t start_tile_ = 0, goal_tile_ = 0;
+  Word start_bit_ = 0, goal_bit_ = 0;
+};
+
+}  // namespace hpcplan::dense::detail

@@ -1,0 +1,58 @@
+#include "hpcplan/dense/slab_plan.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace hpcplan::dense {
+
+std::vector<double> free_states_per_layer(const GogField& field, const TileLayout& layout) {
+  const int dims = field.dims(), extent = field.extent(), last = dims - 1;
+  // Cells of the first d - 1 axes by level sum.
+  std::vector<double> sums(1, 1.0);
+  for (int a = 0; a < last; ++a) {
+    double hist[4] = {0, 0, 0, 0};
+    const std::uint8_t* table = field.level_table(a);
+    for (int c = 0; c < extent; ++c) hist[table[c]] += 1.0;
+    std::vector<double> next(sums.size() + 3, 0.0);
+    for (std::size_t s = 0; s < sums.size(); ++s)
+      for (int l = 0; l < 4; ++l) next[s + l] += sums[s] * hist[l];
+    sums.swap(next);
+  }
+  // Cross-sections with fewer than `below` in level sum, for every possible `below`.
+  std::vector<double> below(sums.size() + 1, 0.0);
+  for (std::size_t s = 0; s < sums.size(); ++s) below[s + 1] = below[s] + sums[s];
+  const std::uint8_t* table = field.level_table(last);
+  std::vector<double> layers(layout.layers(), 0.0);
+  const int side = layout.side(last);
+  for (int z = 0; z < extent; ++z) {
+    const int room = field.threshold() - table[z];
+    const double free = room <= 0 ? 0.0 : below[std::min<std::size_t>(room, sums.size())];
+    layers[z / side] += free;
+  }
+  return layers;
+}
+
+std::vector<int> balanced_slabs(const std::vector<double>& weights, int parts) {
+  if (parts < 1) throw std::logic_error("balanced_slabs: no parts");
+  const int n = static_cast<int>(weights.size());
+  std::vector<int> bounds(parts + 1, n);
+  bounds[0] = 0;
+  double total = 0.0;
+  for (double w : weights) total += w;
+  double running = 0.0;
+  int layer = 0;
+  for (int j = 1; j < parts; ++j) {
+    const double share = total * j / parts;
+    // Take layers while the running total stays nearer the share with the layer than without.
+    while (layer < n && running + weights[layer] / 2 < share) running += weights[layer++];
+    // At least one layer per part while layers remain for the parts after it.
+    const int lo = bounds[j - 1] + 1, hi = n - (parts - j);
+    int b = std::clamp(layer, std::min(lo, n), std::max(std::min(lo, n), hi));
+    for (; layer < b; ++layer) running += weights[layer];
+    for (; layer > b;) running -= weights[--layer];
+    bounds[j] = b;
+  }
+  return bounds;
+}
+
+}  // namespace hpcplan::dense
