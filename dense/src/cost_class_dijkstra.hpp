@@ -111,8 +111,8 @@ class CostClassDijkstra {
           auto node = me.pending.extract(me.pending.begin());
           const ClassKey key = node.key();
           std::vector<Entry>& list = node.mapped();
-          sort_and_merge(list);
           ++me.classes;
+          ++me.epoch;
           // Where this class's targets go, per move length (axes 1..4).
           std::vector<Entry>* into[5] = {};
           for (const Entry& e : list) {
@@ -238,8 +238,32 @@ class CostClassDijkstra {
   }
 
  private:
+  // Merges a class's targets into one entry per tile while one source class is expanded:
+  // without it a tile reached from each of its neighbours is listed once per neighbour (6D,
+  // extent 11: sorting those lists was 47% of the run). A direct-mapped window of recent
+  // tiles per target list; a new source class starts a new epoch.
+  struct Dedup {
+    static constexpr int kBits = 12;
+    std::vector<std::uint64_t> tile = std::vector<std::uint64_t>(std::size_t{1} << kBits);
+    std::vector<std::uint32_t> index = std::vector<std::uint32_t>(std::size_t{1} << kBits);
+    std::vector<std::uint32_t> epoch = std::vector<std::uint32_t>(std::size_t{1} << kBits, 0);
+    void add(std::vector<Entry>& list, std::uint64_t u, Word bits, std::uint32_t now) {
+      const std::size_t h = (u * 0x9E3779B97F4A7C15ULL) >> (64 - kBits);
+      if (epoch[h] == now && tile[h] == u) {
+        list[index[h]].bits |= bits;
+        return;
+      }
+      tile[h] = u;
+      epoch[h] = now;
+      index[h] = static_cast<std::uint32_t>(list.size());
+      list.push_back({u, bits});
+    }
+  };
+
   struct Thread {
     std::map<ClassKey, std::vector<Entry>> pending;
+    Dedup dedup[5];  // per move length
+    std::uint32_t epoch = 0;
     std::vector<ClassEntry> out_low, out_high;
     std::vector<std::vector<Entry>> spare;  // emptied lists, reused for new classes
     std::uint64_t b0 = 0, b1 = 0;
@@ -316,7 +340,7 @@ class CostClassDijkstra {
             const Word open = bits & ~settled_[u - slabs_.b0];
             if (!open) return;
             if (!into[axes]) into[axes] = &me.class_list(key.after(axes));
-            into[axes]->push_back({u, open});
+            me.dedup[axes].add(*into[axes], u, open, me.epoch);
           } else {
             (u < b0 ? me.out_low : me.out_high).push_back({u, bits, key.after(axes)});
           }
