@@ -24,6 +24,7 @@ struct GridArgs {
   std::string algo = "astar";
   std::string heuristic = "lattice";
   std::string connectivity = "seed";
+  std::string engine = "auto";
   std::string start, goal, output;
   double weight = 2.0;
   bool json = false;
@@ -55,6 +56,9 @@ Action register_grid_command(CLI::App& app) {
   add_param(cmd, "max_states", args->options.max_states)->capture_default_str();
   add_param(cmd, "time_limit", args->options.time_limit_s)->capture_default_str();
   add_param(cmd, "no_jump_points", args->no_jump_points);
+  add_param(cmd, "engine", args->engine)->capture_default_str();
+  add_param(cmd, "threads", args->options.threads)->capture_default_str();
+  add_param(cmd, "memory_budget", args->options.memory_budget)->capture_default_str();
   cmd->add_option("--connectivity", args->connectivity, "seed (1 or 2 axes) | full (d <= 4)")
       ->capture_default_str();
   add_number(cmd, "--threshold", p.gog.threshold, "GOG threshold c_v (0 = from --density)", 0, 49)
@@ -125,6 +129,7 @@ Action register_grid_command(CLI::App& app) {
     a.options.algorithm = parse_grid_algorithm(a.algo);
     a.options.heuristic = parse_heuristic(a.heuristic);
     a.problem.connectivity = parse_connectivity(a.connectivity);
+    a.options.engine = parse_engine(a.engine);
     if (weight->count() > 0) a.options.weight = a.weight;
     a.options.jump_points = !a.no_jump_points;
     if (!a.start.empty()) a.problem.start = parse_coordinates(a.start, "--start");

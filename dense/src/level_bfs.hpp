@@ -179,7 +179,6 @@ class LevelBfs {
       res.path = walk_back(level);
       res.hops = res.path.size() - 1;
       res.cost = path_cost(res.path).value();
-      if (!q_.keep_path) res.path.clear();
     } else {
       res.status = status;
     }

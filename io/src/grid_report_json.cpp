@@ -64,6 +64,26 @@ nlohmann::json distributed_json(const GridReport& report) {
   return d;
 }
 
+nlohmann::json dense_json(const dense::Figures& f) {
+  nlohmann::json d;
+  d["tile"] = f.in_tile_axes == 2 ? std::vector<int>{8, 8} : std::vector<int>{64};
+  d["tiles"] = f.tiles;
+  d["free_states"] = f.free_states;
+  d["reached"] = f.reached;
+  d["bytes_per_rank"] = f.bytes_per_rank;
+  d["bytes_total"] = f.bytes_total;
+  d["levels"] = f.levels;
+  d["buckets"] = f.buckets;
+  d["threads"] = f.threads;
+  d["slab_layers"] = f.slab_layers;
+  d["halo_messages"] = f.halo_messages;
+  d["halo_bytes"] = f.halo_bytes;
+  d["exchange_ms"] = f.exchange_ms;
+  d["rank_expanded"] = f.rank_expanded;
+  d["rank_search_ms"] = f.rank_search_ms;
+  return d;
+}
+
 }  // namespace
 
 nlohmann::json to_json(const GridReport& report, bool include_path) {
@@ -106,6 +126,8 @@ nlohmann::json to_json(const GridReport& report, bool include_path) {
   j["key_words"] = o.key_words;
   j["visited_map"] = o.visited_map;
   j["pruning"] = o.pruning;
+  j["engine"] = o.engine;
+  if (report.dense) j["dense"] = dense_json(*report.dense);
   j["scheme"] = report.distribution.scheme;
   if (report.distribution.scheme != "serial") j["distributed"] = distributed_json(report);
   if (report.serial) {
@@ -160,6 +182,18 @@ std::string to_summary(const GridReport& report) {
                 static_cast<unsigned long long>(r.counters.peak_states));
   o << line;
   if (op.pruning != "none") o << "  pruning    " << op.pruning << " (counts are of jump points)\n";
+  if (report.dense) {
+    const dense::Figures& f = *report.dense;
+    std::snprintf(line, sizeof line,
+                  "  dense      %s tiles, %llu %s, %d thread(s), %s per rank, %.4g of %.4g free "
+                  "states reached\n",
+                  f.in_tile_axes == 2 ? "8x8" : "64x1",
+                  static_cast<unsigned long long>(f.levels),
+                  op.algorithm == "bfs" ? "levels" : "cost classes", f.threads,
+                  format_bytes(f.bytes_per_rank).c_str(), static_cast<double>(f.reached),
+                  static_cast<double>(f.free_states));
+    o << line;
+  }
   std::snprintf(line, sizeof line, "  time       %.3f ms search, %.3f ms set-up\n",
                 r.counters.time_ms, r.setup_ms);
   o << line;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/format.hpp"
@@ -18,16 +19,111 @@ bool dense_visited_fits(int dims, int extent) {
 }
 
 GridReport solve_grid(const GridProblem& problem, const GridSearchOptions& options) {
-  if (dense_visited_fits(problem.dims, problem.extent))
-    return solve_grid_with<search::StampedDensePolicy>(problem, options);
-  return solve_grid_with<search::DefaultVisitedMap>(problem, options);
+  validate(problem, options);
+  Stopwatch setup;
+  const GogField field(problem.dims, problem.extent, problem.gog);
+  const double field_ms = setup.milliseconds();
+  GridReport report = solve_grid(field, problem, options);
+  report.result.setup_ms += field_ms;
+  return report;
 }
 
 GridReport solve_grid(const GogField& field, const GridProblem& problem,
                       const GridSearchOptions& options) {
+  validate(problem, options);
+  {
+    Stopwatch setup;
+    GridReport report = prepare_grid_report(problem, options, field, 1);
+    if (uses_dense_engine(field, options, report, 1)) {
+      report.result.setup_ms = setup.milliseconds();
+      dense::LocalTransport local;
+      run_dense(field, problem, options, local, 1, report);
+      finish_grid_report(report);
+      return report;
+    }
+  }
   if (dense_visited_fits(problem.dims, problem.extent))
     return solve_grid_with<search::StampedDensePolicy>(field, problem, options);
   return solve_grid_with<search::DefaultVisitedMap>(field, problem, options);
+}
+
+std::uint64_t dense_memory_budget(const GridSearchOptions& options, const GridReport& report) {
+  if (options.memory_budget > 0) return options.memory_budget;
+  return report.options.max_states * bytes_per_state(report.options.key_words);
+}
+
+namespace {
+
+dense::Query dense_query(const GogField&, const GridProblem& problem, const GridSearchOptions& o,
+                         const GridReport& report, int ranks_sharing_memory) {
+  dense::Query q;
+  q.start = report.problem.start;
+  q.goal = report.problem.goal;
+  q.algorithm =
+      o.algorithm == GridAlgorithm::bfs ? dense::Algorithm::bfs : dense::Algorithm::dijkstra;
+  q.connectivity = problem.connectivity;
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  q.threads = o.threads > 0 ? o.threads : std::max(1, cores / std::max(1, ranks_sharing_memory));
+  q.keep_path = o.keep_path;
+  q.memory_budget = dense_memory_budget(o, report);
+  q.stop = Stop::after(o.time_limit_s, o.cancel);
+  if (o.stop_when) q.stop.also_when(o.stop_when);
+  q.progress_label = "hpcplan grid " + report.options.algorithm + " (dense)";
+  return q;
+}
+
+// Re-validates a returned path move by move with the lattice graph (the field formula, not the
+// dense engine's tables) and returns its length.
+template <int W>
+double validated_dense_path(const GogField& field, const GridProblem& problem,
+                            const std::vector<std::vector<int>>& path) {
+  const LatticeGraph<W> graph(field, problem.connectivity);
+  std::vector<typename LatticeGraph<W>::State> states;
+  states.reserve(path.size());
+  for (const auto& c : path) states.push_back(graph.pack(c));
+  return search::validated_length(graph, states);
+}
+
+}  // namespace
+
+bool uses_dense_engine(const GogField& field, const GridSearchOptions& options,
+                       const GridReport& report, int ranks) {
+  if (options.engine == GridEngine::sparse) return false;
+  if (options.algorithm != GridAlgorithm::bfs && options.algorithm != GridAlgorithm::dijkstra)
+    return false;
+  if (options.engine == GridEngine::dense) return true;
+  dense::Query q;
+  q.algorithm =
+      options.algorithm == GridAlgorithm::bfs ? dense::Algorithm::bfs : dense::Algorithm::dijkstra;
+  q.connectivity = parse_connectivity(report.problem.connectivity);
+  q.keep_path = options.keep_path;
+  return dense::planned_bytes(field, q, ranks) <= dense_memory_budget(options, report);
+}
+
+void run_dense(const GogField& field, const GridProblem& problem, const GridSearchOptions& options,
+               dense::SlabTransport& transport, int ranks_sharing_memory, GridReport& report) {
+  const dense::Query q = dense_query(field, problem, options, report, ranks_sharing_memory);
+  dense::Result r = dense::search(field, q, transport);
+  GridResult& out = report.result;
+  out.status = r.status;
+  out.cost = r.cost;
+  out.hops = r.hops;
+  out.counters = r.counters;
+  out.path = std::move(r.path);
+  report.options.engine = "dense";
+  report.options.visited_map = "dense_bitmap";
+  report.dense = std::move(r.figures);
+  if (!out.path.empty()) {
+    const double length = report.options.key_words == 1
+                              ? validated_dense_path<1>(field, problem, out.path)
+                          : report.options.key_words == 2
+                              ? validated_dense_path<2>(field, problem, out.path)
+                              : validated_dense_path<4>(field, problem, out.path);
+    if (std::abs(length - out.cost) > 1e-9 * (1.0 + out.cost))
+      throw RunError("internal error: the dense engine's path is " + std::to_string(length) +
+                     " long, not its cost " + std::to_string(out.cost));
+    if (!options.keep_path) out.path.clear();
+  }
 }
 
 GridReport prepare_grid_report(const GridProblem& problem, const GridSearchOptions& options,

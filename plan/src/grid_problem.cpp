@@ -23,7 +23,10 @@ struct GridEntry {
 const std::vector<GridEntry>& grid_entries() {
   static const std::vector<GridEntry> table = [] {
     const std::vector<std::string> worlds{"grid"};
-    const std::vector<std::string> common{"heuristic", "connectivity", "max_states", "time_limit"};
+    const std::vector<std::string> common{"heuristic", "connectivity", "max_states", "time_limit",
+                                          "engine"};
+    const std::vector<std::string> exhaustive{"connectivity", "max_states", "time_limit",
+                                              "engine",       "threads",    "memory_budget"};
     std::vector<std::string> weighted = common;
     weighted.insert(weighted.begin(), "weight");
     std::vector<std::string> with_jump_points = common;
@@ -36,17 +39,9 @@ const std::vector<GridEntry>& grid_entries() {
          {"wastar", "grid search", worlds, weighted,
           "weighted A* (f = g + w h), closed states not reopened, cost <= w x optimal"}},
         {GridAlgorithm::dijkstra,
-         {"dijkstra",
-          "grid search",
-          worlds,
-          {"connectivity", "max_states", "time_limit"},
-          "Dijkstra (h = 0), optimal"}},
+         {"dijkstra", "grid search", worlds, exhaustive, "Dijkstra (h = 0), optimal"}},
         {GridAlgorithm::bfs,
-         {"bfs",
-          "grid search",
-          worlds,
-          {"connectivity", "max_states", "time_limit"},
-          "breadth-first search: fewest moves"}},
+         {"bfs", "grid search", worlds, exhaustive, "breadth-first search: fewest moves"}},
     };
   }();
   return table;
@@ -73,6 +68,13 @@ HeuristicKind parse_heuristic(std::string_view name) {
   if (name == "lattice") return HeuristicKind::lattice;
   if (name == "euclidean") return HeuristicKind::euclidean;
   throw InputError("unknown heuristic '" + std::string(name) + "' (expected lattice or euclidean)");
+}
+
+GridEngine parse_engine(std::string_view name) {
+  if (name == "auto") return GridEngine::automatic;
+  if (name == "dense") return GridEngine::dense;
+  if (name == "sparse") return GridEngine::sparse;
+  throw InputError("unknown engine '" + std::string(name) + "' (expected auto, dense or sparse)");
 }
 
 Connectivity parse_connectivity(std::string_view name) {
@@ -148,6 +150,12 @@ void validate(const GridProblem& p, const GridSearchOptions& o) {
   }
   if (!(o.time_limit_s >= 0.0) || !std::isfinite(o.time_limit_s))
     throw InputError("--time-limit must be a non-negative number of seconds");
+  if (o.engine == GridEngine::dense && o.algorithm != GridAlgorithm::bfs &&
+      o.algorithm != GridAlgorithm::dijkstra)
+    throw InputError("--engine dense runs --algo bfs and dijkstra (A* and weighted A* run on the "
+                     "sparse engine)");
+  if (o.threads < 0 || o.threads > 4096)
+    throw InputError("--threads must be in [0, 4096], got " + std::to_string(o.threads));
 }
 
 std::vector<int> adjust_to_free(const GogField& field, std::vector<int> state, int direction,

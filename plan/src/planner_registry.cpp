@@ -36,6 +36,14 @@ std::vector<ParamSpec> parameter_table() {
               "from available memory; worlds: none)"),
       real("time_limit", 0, 1e9, "0", "seconds (0 = none)"),
       flag("no_jump_points", "2D A*: expand every lattice state, not only the jump points"),
+      choice("engine", {"auto", "dense", "sparse"},
+             "dense: bit-parallel BFS / Dijkstra over the whole lattice; sparse: the best-first "
+             "engine; auto: dense for bfs and dijkstra when the lattice fits the memory budget"),
+      integer("threads", 0, 4096, "0",
+              "dense engine: OpenMP threads per process (0: this process's share of the cores)"),
+      integer("memory_budget", 0, 1.8e19, "0",
+              "dense engine: bytes each process may use (0: what --max-states buys the sparse "
+              "engine, by default half the available memory)"),
       // Box maps and sphere worlds (hpcplan map3d / sphere2d).
       real("resolution", 1e-9, 1e9, "0.1 (map3d), 0.25 (sphere2d)", "grid spacing of the searches"),
       real("spacing", 0, 1e9, "0",

@@ -164,6 +164,7 @@ TEST(GridPlanner, DenseVisitedStoreEqualsTheHashMap) {
         GridSearchOptions o;
         o.algorithm = a;
         o.keep_path = true;
+        o.engine = GridEngine::sparse;  // the sparse engine's two stores
         const GridReport hash = solve_grid_with<search::DefaultVisitedMap>(p, o);
         const GridReport dense = solve_grid(p, o), again = solve_grid(p, o);
         EXPECT_EQ(hash.options.visited_map, search::DefaultVisitedMap::name);

@@ -58,7 +58,8 @@ TEST(Stop, AnotherThreadCancelsAGridSearchWithinMilliseconds) {
     p.extent = 40;
     GridSearchOptions o;
     o.algorithm = GridAlgorithm::dijkstra;
-    o.max_states = 50'000'000;  // a guard: the test must never fill the machine
+    o.engine = GridEngine::sparse;  // the best-first loop's poll (test_dense_engine.cpp: dense)
+    o.max_states = 50'000'000;      // a guard: the test must never fill the machine
     std::stop_source source;
     o.cancel = source.get_token();
     std::atomic<Clock::time_point::rep> requested{0};

@@ -44,7 +44,8 @@ struct Query {
   Algorithm algorithm = Algorithm::bfs;
   Connectivity connectivity = Connectivity::seed_pairs;
   int threads = 1;                       // OpenMP threads of this rank (>= 1)
-  bool keep_path = false;                // return the path (BFS always walks it for its cost)
+  bool keep_path = false;                // Dijkstra: record classes and walk the path back
+                                         // (BFS always walks it, for its cost, and returns it)
   std::uint64_t memory_budget = 0;       // bytes this rank may use; 0 = no limit
   Stop stop;                             // polled between chunks of a level or class
   std::string progress_label;            // non-empty: progress lines on runs over 2 s

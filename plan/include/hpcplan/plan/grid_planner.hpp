@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "hpcplan/dense/dense_search.hpp"
 #include "hpcplan/plan/grid_problem.hpp"
 #include "hpcplan/search/search_result.hpp"
 
@@ -38,8 +39,9 @@ struct GridOptionsReport {
   double weight = 1.0;
   std::string heuristic;
   std::uint64_t max_states = 0;
-  int key_words = 1;             // 64-bit words per packed state
-  std::string visited_map;       // the state store used
+  std::string engine = "sparse";  // sparse (best-first) | dense (bit-parallel lattice)
+  int key_words = 1;              // 64-bit words per packed state
+  std::string visited_map;        // the state store used
   std::string pruning = "none";  // none | jump_points (2D A*; its path is still unit moves)
 };
 
@@ -77,6 +79,7 @@ struct GridReport {
   GridDistribution distribution;
   GridResult result;
   std::optional<SerialReference> serial;
+  std::optional<dense::Figures> dense;  // the dense engine's own figures, when it ran
 };
 
 // The serial search. Its visited map is chosen by the lattice's size: where the packed keys fit
@@ -97,6 +100,16 @@ GridReport solve_grid(const GogField& field, const GridProblem& problem,
 // `ranks_sharing_memory` processes.
 GridReport prepare_grid_report(const GridProblem& problem, const GridSearchOptions& options,
                                const GogField& field, int ranks_sharing_memory);
+// The dense engine: its memory budget per process (--memory-budget, else what max_states buys
+// the sparse engine), whether it runs this query (--engine dense, or auto for BFS and Dijkstra
+// when `ranks` slabs fit the budget), and a run on this process's slab, collective over the
+// transport, filling the report (its path re-validated move by move with the lattice graph).
+std::uint64_t dense_memory_budget(const GridSearchOptions& options, const GridReport& report);
+bool uses_dense_engine(const GogField& field, const GridSearchOptions& options,
+                       const GridReport& report, int ranks);
+void run_dense(const GogField& field, const GridProblem& problem, const GridSearchOptions& options,
+               dense::SlabTransport& transport, int ranks_sharing_memory, GridReport& report);
+
 // Derives quality from cost once the search has filled the result.
 void finish_grid_report(GridReport& report);
 // Workload deviation of seed 002 Table IV: max - min of the ranks' shares of expansions, in

@@ -16,10 +16,14 @@ namespace hpcplan {
 
 enum class GridAlgorithm { astar, wastar, dijkstra, bfs };
 enum class HeuristicKind { lattice, euclidean };
+// Which engine searches: the dense bit-parallel one (BFS and Dijkstra over the whole lattice),
+// the sparse best-first one, or the dense one where it applies and fits the memory budget.
+enum class GridEngine { automatic, dense, sparse };
 
 GridAlgorithm parse_grid_algorithm(std::string_view name);  // InputError if unknown
 HeuristicKind parse_heuristic(std::string_view name);
 Connectivity parse_connectivity(std::string_view name);
+GridEngine parse_engine(std::string_view name);
 std::string_view to_string(GridAlgorithm a);
 std::string_view to_string(HeuristicKind h);
 std::string_view to_string(Connectivity c);
@@ -50,6 +54,11 @@ struct GridSearchOptions {
   // 2D A* (weight 1) searches the lattice's jump points (graph/jump_point_graph.hpp): the same
   // optimal cost, far fewer expansions. False: every lattice state, as at other d.
   bool jump_points = true;
+  GridEngine engine = GridEngine::automatic;
+  // The dense engine's OpenMP threads (0: this process's share of the cores) and memory budget
+  // in bytes (0: what max_states buys the sparse engine, max_states x bytes_per_state).
+  int threads = 0;
+  std::uint64_t memory_budget = 0;
 };
 
 // Throws InputError for anything a user could have got wrong.
