@@ -137,7 +137,7 @@ Action register_grid_command(CLI::App& app) {
 
     a.dist.scheme = distributed::parse_scheme(a.mode);
     distributed::validate(a.dist, a.problem.extent, context.comm ? context.comm->size() : 1,
-                   a.problem.dims);
+                          a.problem.dims);
     if (!a.output.empty()) require_writable_destination(a.output, "--output");
 
     if (!a.simulate_ranks.empty()) {
@@ -157,9 +157,9 @@ Action register_grid_command(CLI::App& app) {
         std::fputs((to_summary(sim.serial) + to_summary(sim)).c_str(), stdout);
       return kExitOk;
     }
-    const GridReport report =
-        context.comm ? distributed::solve_grid_distributed(a.problem, a.options, a.dist, *context.comm)
-                     : solve_grid(a.problem, a.options);
+    const GridReport report = context.comm ? distributed::solve_grid_distributed(
+                                                 a.problem, a.options, a.dist, *context.comm)
+                                           : solve_grid(a.problem, a.options);
     if (!context.is_root()) return kExitOk;
     const std::string json = to_json(report, a.options.keep_path).dump() + "\n";
     if (!a.output.empty()) write_file_atomically(a.output, json);

@@ -6,7 +6,9 @@
 // k + 1 in order, settles the bits not yet settled (the first class to hold a state is its
 // cost), and files the targets into the classes one move more expensive, its own or, past its
 // sub-slab, an outbox. Then one exchange and one reduction (the next bucket is the floor of the
-// smallest pending class anywhere; the goal settled; nothing left; a stop).
+// smallest pending class anywhere; the goal settled; nothing left; a stop). A run ends with the
+// bucket that settles the goal, processed whole, so its counts do not depend on the number of
+// ranks or threads.
 #include <limits>
 #include <map>
 
@@ -63,6 +65,9 @@ class CostClassDijkstra {
         kernel_(kernel),
         slabs_(slabs) {
     for (int a = 0; a < D; ++a) stride_[a] = layout.stride(a);
+    double free = 0.0;
+    for (double w : free_states_per_layer(field, layout)) free += w;
+    free_states_ = static_cast<std::uint64_t>(free + 0.5);
   }
 
   // Settled bits, and with a path each state's class (8 bytes a state).
@@ -90,7 +95,7 @@ class CostClassDijkstra {
     }
     const std::uint64_t fixed = settled_.bytes() + keys_.bytes() + windows_.bytes();
 
-    DenseProgress progress(q_.progress_label, 0);
+    DenseProgress progress(q_.progress_label, q_.progress_after_s, free_states_);
     double bucket = 0.0;
     std::uint64_t buckets = 0, settled_total = 0, peak_pending = 1;
     Status status = Status::no_path;
@@ -111,8 +116,8 @@ class CostClassDijkstra {
           auto node = me.pending.extract(me.pending.begin());
           const ClassKey key = node.key();
           std::vector<Entry>& list = node.mapped();
-          ++me.classes;
           ++me.epoch;
+          const std::uint64_t settled_before = me.settled;
           // Where this class's targets go, per move length (axes 1..4).
           std::vector<Entry>* into[5] = {};
           for (const Entry& e : list) {
@@ -132,6 +137,9 @@ class CostClassDijkstra {
             }
             expand(me, e.tile, fresh, key, into);
           }
+          // Classes that settled a state, a set independent of ranks and threads (a class
+          // whose states all settled earlier elsewhere is not counted).
+          if (me.settled > settled_before) me.processed.push_back(key);
           me.recycle(std::move(list));
         }
         if (budget && list_bytes(me) * slabs_.threads + fixed > budget)
@@ -160,6 +168,10 @@ class CostClassDijkstra {
           std::uint64_t sums[2] = {0, 0};
           double next = std::numeric_limits<double>::infinity();
           std::uint64_t lists = 0;
+          if (q_.stop.can_stop())
+            if (const auto s = q_.stop.check())
+              threads_.front().stop =
+                  std::max(threads_.front().stop, *s == Status::cancelled ? 3 : 1);
           for (Thread& t : threads_) {
             maxes[0] |= t.goal_hit ? 1 : 0;
             maxes[1] = std::max<std::uint64_t>(maxes[1], t.stop);
@@ -179,7 +191,7 @@ class CostClassDijkstra {
             solved = true;
             done = true;
           } else if (maxes[1]) {
-            status = maxes[1] == 3 ? Status::cancelled
+            status = maxes[1] == 3   ? Status::cancelled
                      : maxes[1] == 2 ? Status::budget_exceeded
                                      : Status::timeout;
             done = true;
@@ -198,21 +210,21 @@ class CostClassDijkstra {
     }
 
     Counters& k = res.counters;
-    std::uint64_t local[3] = {0, 0, 0};
+    std::uint64_t local[2] = {0, 0};
+    std::vector<ClassKey> classes;
     for (const Thread& t : threads_) {
       local[0] += t.settled;
       local[1] += t.generated;
-      local[2] += t.classes;
+      classes.insert(classes.end(), t.processed.begin(), t.processed.end());
     }
     res.figures.rank_expanded = gather_u64(local[0]);
     res.figures.rank_search_ms = gather_double(clock.milliseconds());
     tr_.sum(std::span<std::uint64_t>(local, 2));
-    tr_.max(std::span<std::uint64_t>(local + 2, 1));
     k.expanded = local[0];
     k.generated = local[1];
     k.peak_states = local[0];
     k.peak_open = peak_pending;
-    res.figures.levels = local[2];
+    res.figures.levels = distinct_classes(classes);
     res.figures.buckets = buckets;
     res.figures.reached = local[0];
     res.figures.bytes_needed = fixed;
@@ -267,7 +279,8 @@ class CostClassDijkstra {
     std::vector<ClassEntry> out_low, out_high;
     std::vector<std::vector<Entry>> spare;  // emptied lists, reused for new classes
     std::uint64_t b0 = 0, b1 = 0;
-    std::uint64_t settled = 0, generated = 0, classes = 0, reported = 0;
+    std::vector<ClassKey> processed;  // the classes this thread took, in order
+    std::uint64_t settled = 0, generated = 0, reported = 0;
     bool goal_hit = false;
     ClassKey goal_key;
     int stop = 0;
@@ -318,8 +331,9 @@ class CostClassDijkstra {
 
   void record(std::uint64_t tile, Word fresh, const ClassKey& key) {
     if (!key.packable())
-      throw RunError("dense Dijkstra: a path cost beyond 65,535 moves of one kind cannot be "
-                     "recorded for --path; run without --path");
+      throw RunError(
+          "dense Dijkstra: a path cost beyond 65,535 moves of one kind cannot be "
+          "recorded for --path; run without --path");
     std::uint64_t* k = keys_.data() + (tile - slabs_.b0) * 64;
     for (Word w = fresh; w; w &= w - 1) k[std::countr_zero(w)] = key.packed() + 1;
   }
@@ -363,6 +377,16 @@ class CostClassDijkstra {
     std::vector<double> out(bytes.size() / sizeof(v));
     std::memcpy(out.data(), bytes.data(), out.size() * sizeof(v));
     return out;
+  }
+
+  // Classes processed anywhere (a class spanning several slabs is processed by each).
+  std::uint64_t distinct_classes(std::vector<ClassKey> mine) {
+    const auto all =
+        tr_.allgather(std::as_bytes(std::span<const ClassKey>(mine.data(), mine.size())));
+    std::vector<ClassKey> every(all.size() / sizeof(ClassKey));
+    if (!every.empty()) std::memcpy(every.data(), all.data(), every.size() * sizeof(ClassKey));
+    std::sort(every.begin(), every.end());
+    return static_cast<std::uint64_t>(std::unique(every.begin(), every.end()) - every.begin());
   }
 
   // The goal's class, from the rank that settled it.
@@ -416,7 +440,8 @@ class CostClassDijkstra {
         break;
       }
       tr_.min(std::span<double>(&best, 1));
-      if (!std::isfinite(best)) throw RunError("dense Dijkstra: the walk back found no predecessor");
+      if (!std::isfinite(best))
+        throw RunError("dense Dijkstra: the walk back found no predecessor");
       const auto& o = offsets[static_cast<std::size_t>(best)];
       int axes = 0;
       for (int a = 0; a < D; ++a) {
@@ -440,6 +465,7 @@ class CostClassDijkstra {
   const FreeWindows& windows_;
   const Kernel& kernel_;
   const Slabs& slabs_;
+  std::uint64_t free_states_ = 0;
   std::array<std::int64_t, kMaxDims> stride_{};
   ZeroedWords settled_, keys_;
   std::vector<Thread> threads_;

@@ -40,7 +40,7 @@ template <int D, int K>
 struct SeedKernel {
   template <bool kSplit, class Out>
   [[gnu::always_inline]] std::uint64_t expand(Word f, const FreeWindows::At& at, int stride,
-                                               const std::int64_t* W, Out&& out) const {
+                                              const std::int64_t* W, Out&& out) const {
     return SeedMoves<D, K>::template expand<kSplit>(f, at, stride, W, out);
   }
 };
@@ -136,7 +136,8 @@ std::uint64_t planned_bytes(const GogField& field, const Query& q, int ranks) {
   for (std::size_t r = 0; r + 1 < bounds.size(); ++r)
     widest = std::max(widest, bounds[r + 1] - bounds[r]);
   const std::uint64_t tiles = static_cast<std::uint64_t>(widest) * layout.layer_tiles();
-  std::uint64_t bytes = FreeWindows::table_bytes(layout, field.threshold(), max_word_steps(q, dims));
+  std::uint64_t bytes =
+      FreeWindows::table_bytes(layout, field.threshold(), max_word_steps(q, dims));
   if (q.algorithm == Algorithm::bfs) {
     bytes += detail::LevelBfs<2, 2, SeedKernel<2, 2>>::store_bytes(tiles);
   } else {

@@ -53,12 +53,12 @@ void from_bytes(const std::vector<std::byte>& b, std::vector<T>& out) {
 
 // The layers of this rank and of each of its threads, and the neighbouring ranks.
 struct Slabs {
-  std::vector<int> rank_layers;    // ranks + 1 bounds
-  int z0 = 0, z1 = 0;              // this rank's layers
-  std::uint64_t b0 = 0, b1 = 0;    // this rank's tiles
+  std::vector<int> rank_layers;             // ranks + 1 bounds
+  int z0 = 0, z1 = 0;                       // this rank's layers
+  std::uint64_t b0 = 0, b1 = 0;             // this rank's tiles
   std::vector<std::uint64_t> thread_tiles;  // threads + 1 tile bounds, inside [b0, b1)
   int threads = 1;
-  int below = -1, above = -1;      // nearest ranks with layers below / above (-1: none)
+  int below = -1, above = -1;  // nearest ranks with layers below / above (-1: none)
   bool empty() const { return z1 == z0; }
 };
 
@@ -75,8 +75,8 @@ inline Slabs plan_slabs(const GogField& field, const TileLayout& layout, int ran
   // Threads own whole layers too: at most one per layer of the slab.
   s.threads = std::max(1, std::min(threads, s.z1 - s.z0));
   const std::vector<double> mine(weights.begin() + s.z0, weights.begin() + s.z1);
-  const std::vector<int> tb = mine.empty() ? std::vector<int>(s.threads + 1, 0)
-                                           : balanced_slabs(mine, s.threads);
+  const std::vector<int> tb =
+      mine.empty() ? std::vector<int>(s.threads + 1, 0) : balanced_slabs(mine, s.threads);
   for (int b : tb) s.thread_tiles.push_back(s.b0 + static_cast<std::uint64_t>(b) * lt);
   if (!s.empty()) {
     for (int r = rank - 1; r >= 0 && s.below < 0; --r)
@@ -145,25 +145,27 @@ inline int legal_move(const GogField& field, const int* from, const std::array<i
 // free states, the rate and the time left at that rate.
 class DenseProgress {
  public:
-  DenseProgress(std::string label, std::uint64_t free_states)
-      : label_(std::move(label)), free_(free_states) {}
+  DenseProgress(std::string label, double after_s, std::uint64_t free_states)
+      : label_(std::move(label)), after_s_(after_s), free_(free_states) {}
   void update(const char* unit, double at, std::uint64_t reached) {
-    if (label_.empty()) return;
+    if (label_.empty() || !line_.enabled()) return;
     const double t = clock_.seconds();
-    if (t < 2.0 || t < last_ + 1.0) return;
+    if (t < after_s_ || (last_ >= 0 && t < last_ + 1.0)) return;
     last_ = t;
     const double rate = reached / t;
     const double left = rate > 0 && free_ > reached ? (free_ - reached) / rate : 0.0;
-    line_.show("%s: %s %.6g, %.4g of %.4g free states reached (%.1f%%), %.3g states/s, %.0f s, "
-               "at most ~%.0f s left",
-               label_.c_str(), unit, at, static_cast<double>(reached),
-               static_cast<double>(free_), free_ ? 100.0 * reached / free_ : 0.0, rate, t, left);
+    line_.show(
+        "%s: %s %.6g, %.4g of %.4g free states reached (%.1f%%), %.3g states/s, %.0f s, "
+        "at most ~%.0f s left",
+        label_.c_str(), unit, at, static_cast<double>(reached), static_cast<double>(free_),
+        free_ ? 100.0 * reached / free_ : 0.0, rate, t, left);
   }
 
  private:
   std::string label_;
+  double after_s_;
   std::uint64_t free_;
-  double last_ = 0.0;
+  double last_ = -1.0;
   Stopwatch clock_;
   ProgressLine line_;
 };

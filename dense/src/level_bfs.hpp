@@ -30,6 +30,9 @@ class LevelBfs {
         kernel_(kernel),
         slabs_(slabs) {
     for (int a = 0; a < D; ++a) stride_[a] = layout.stride(a);
+    double free = 0.0;
+    for (double w : free_states_per_layer(field, layout)) free += w;
+    free_states_ = static_cast<std::uint64_t>(free + 0.5);
   }
 
   // Bytes of the store and marks for a slab of `tiles` tiles.
@@ -60,7 +63,7 @@ class LevelBfs {
     }
     const std::uint64_t fixed = codes_.bytes() + windows_.bytes() + marks_bytes();
 
-    DenseProgress progress(q_.progress_label, 0);
+    DenseProgress progress(q_.progress_label, q_.progress_after_s, free_states_);
     std::uint64_t level = 0;
     std::uint64_t reached_total = 1, peak_level = 1;
     Status status = Status::no_path;
@@ -89,7 +92,8 @@ class LevelBfs {
           if ((++n & 1023) == 0 && poll_stop(me)) break;
           expand(me, e, c0, c1);
         }
-        if (budget && list_bytes(me) * slabs_.threads + fixed > budget) me.stop = std::max(me.stop, 2);
+        if (budget && list_bytes(me) * slabs_.threads + fixed > budget)
+          me.stop = std::max(me.stop, 2);
 #pragma omp barrier
 #pragma omp master
         {
@@ -116,6 +120,10 @@ class LevelBfs {
           std::uint64_t sums[2] = {0, 0};
           std::uint64_t maxes[2] = {0, 0};
           std::uint64_t lists = 0;
+          if (q_.stop.can_stop())
+            if (const auto s = q_.stop.check())
+              threads_.front().stop =
+                  std::max(threads_.front().stop, *s == Status::cancelled ? 3 : 1);
           for (const Thread& t : threads_) {
             sums[0] += t.fresh;
             sums[1] += t.next.size();
@@ -133,7 +141,7 @@ class LevelBfs {
             solved = true;
             done = true;
           } else if (maxes[1]) {
-            status = maxes[1] == 3 ? Status::cancelled
+            status = maxes[1] == 3   ? Status::cancelled
                      : maxes[1] == 2 ? Status::budget_exceeded
                                      : Status::timeout;
             done = true;
@@ -196,13 +204,17 @@ class LevelBfs {
     int stop = 0;  // 1 timeout, 2 budget, 3 cancelled: the highest wins
   };
 
-  bool owns(std::uint64_t tile) const { return tile >= slabs_.b0 && tile < slabs_.b1; }
+  bool owns(std::uint64_t tile) const {
+    return tile >= slabs_.b0 && tile < slabs_.b1;
+  }
   int thread_of(std::uint64_t tile) const {
     int t = 0;
     while (tile >= slabs_.thread_tiles[t + 1]) ++t;
     return t;
   }
-  Word* code_words(std::uint64_t tile) { return codes_.data() + 2 * (tile - slabs_.b0); }
+  Word* code_words(std::uint64_t tile) {
+    return codes_.data() + 2 * (tile - slabs_.b0);
+  }
   const Word* code_words(std::uint64_t tile) const {
     return codes_.data() + 2 * (tile - slabs_.b0);
   }
@@ -340,6 +352,7 @@ class LevelBfs {
   const FreeWindows& windows_;
   const Kernel& kernel_;
   const Slabs& slabs_;
+  std::uint64_t free_states_ = 0;
   std::array<std::int64_t, kMaxDims> stride_{};
   ZeroedWords codes_;
   std::vector<Thread> threads_;

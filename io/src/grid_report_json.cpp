@@ -187,8 +187,7 @@ std::string to_summary(const GridReport& report) {
     std::snprintf(line, sizeof line,
                   "  dense      %s tiles, %llu %s, %d thread(s), %s per rank, %.4g of %.4g free "
                   "states reached\n",
-                  f.in_tile_axes == 2 ? "8x8" : "64x1",
-                  static_cast<unsigned long long>(f.levels),
+                  f.in_tile_axes == 2 ? "8x8" : "64x1", static_cast<unsigned long long>(f.levels),
                   op.algorithm == "bfs" ? "levels" : "cost classes", f.threads,
                   format_bytes(f.bytes_per_rank).c_str(), static_cast<double>(f.reached),
                   static_cast<double>(f.free_states));

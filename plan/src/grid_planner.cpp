@@ -114,11 +114,10 @@ void run_dense(const GogField& field, const GridProblem& problem, const GridSear
   report.options.visited_map = "dense_bitmap";
   report.dense = std::move(r.figures);
   if (!out.path.empty()) {
-    const double length = report.options.key_words == 1
-                              ? validated_dense_path<1>(field, problem, out.path)
-                          : report.options.key_words == 2
-                              ? validated_dense_path<2>(field, problem, out.path)
-                              : validated_dense_path<4>(field, problem, out.path);
+    const double length =
+        report.options.key_words == 1   ? validated_dense_path<1>(field, problem, out.path)
+        : report.options.key_words == 2 ? validated_dense_path<2>(field, problem, out.path)
+                                        : validated_dense_path<4>(field, problem, out.path);
     if (std::abs(length - out.cost) > 1e-9 * (1.0 + out.cost))
       throw RunError("internal error: the dense engine's path is " + std::to_string(length) +
                      " long, not its cost " + std::to_string(out.cost));

@@ -152,8 +152,9 @@ void validate(const GridProblem& p, const GridSearchOptions& o) {
     throw InputError("--time-limit must be a non-negative number of seconds");
   if (o.engine == GridEngine::dense && o.algorithm != GridAlgorithm::bfs &&
       o.algorithm != GridAlgorithm::dijkstra)
-    throw InputError("--engine dense runs --algo bfs and dijkstra (A* and weighted A* run on the "
-                     "sparse engine)");
+    throw InputError(
+        "--engine dense runs --algo bfs and dijkstra (A* and weighted A* run on the "
+        "sparse engine)");
   if (o.threads < 0 || o.threads > 4096)
     throw InputError("--threads must be in [0, 4096], got " + std::to_string(o.threads));
 }

@@ -48,9 +48,10 @@ Instance random_instance(std::uint64_t seed, int d, bool full) {
 }
 
 GridReport run(const Instance& in, GridAlgorithm algo, HeuristicKind h = HeuristicKind::lattice,
-               double weight = 1.0) {
+               double weight = 1.0, GridEngine engine = GridEngine::sparse) {
   GridSearchOptions o;
   o.algorithm = algo;
+  o.engine = engine;
   o.heuristic = h;
   if (algo == GridAlgorithm::wastar) o.weight = weight;
   o.keep_path = true;
@@ -85,20 +86,28 @@ TEST_P(OracleAgreement, EveryAlgorithmMatchesTheOracle) {
   const GridReport astar_euclid = run(in, GridAlgorithm::astar, HeuristicKind::euclidean);
   const GridReport dijkstra = run(in, GridAlgorithm::dijkstra);
   const GridReport bfs = run(in, GridAlgorithm::bfs);
+  // The same two on the dense engine.
+  const GridReport dense_dijkstra =
+      run(in, GridAlgorithm::dijkstra, HeuristicKind::lattice, 1.0, GridEngine::dense);
+  const GridReport dense_bfs =
+      run(in, GridAlgorithm::bfs, HeuristicKind::lattice, 1.0, GridEngine::dense);
+  ASSERT_EQ(dense_bfs.options.engine, "dense");
   if (!best.reachable) {
-    for (const auto* r : {&astar, &astar_euclid, &dijkstra, &bfs})
+    for (const auto* r : {&astar, &astar_euclid, &dijkstra, &bfs, &dense_dijkstra, &dense_bfs})
       EXPECT_EQ(r->result.status, search::Status::no_path);
     return;
   }
-  for (const auto* r : {&astar, &astar_euclid, &dijkstra}) {
+  for (const auto* r : {&astar, &astar_euclid, &dijkstra, &dense_dijkstra}) {
     expect_valid_path(*r, o, in);
     EXPECT_NEAR(r->result.cost, best.cost, 1e-9 * (1 + best.cost));
   }
   // The exact heuristic never expands more than Dijkstra.
   EXPECT_LE(astar.result.counters.expanded, dijkstra.result.counters.expanded);
-  expect_valid_path(bfs, o, in);
-  EXPECT_EQ(static_cast<std::int64_t>(bfs.result.hops), fewest.hops);
-  EXPECT_LE(bfs.result.hops, astar.result.hops);
+  for (const auto* r : {&bfs, &dense_bfs}) {
+    expect_valid_path(*r, o, in);
+    EXPECT_EQ(static_cast<std::int64_t>(r->result.hops), fewest.hops);
+    EXPECT_LE(r->result.hops, astar.result.hops);
+  }
   for (double w : {1.5, 3.0}) {
     const GridReport wa = run(in, GridAlgorithm::wastar, HeuristicKind::lattice, w);
     expect_valid_path(wa, o, in);

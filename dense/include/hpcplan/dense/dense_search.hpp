@@ -43,32 +43,33 @@ struct Query {
   std::vector<int> start, goal;  // free lattice states
   Algorithm algorithm = Algorithm::bfs;
   Connectivity connectivity = Connectivity::seed_pairs;
-  int threads = 1;                       // OpenMP threads of this rank (>= 1)
-  bool keep_path = false;                // Dijkstra: record classes and walk the path back
-                                         // (BFS always walks it, for its cost, and returns it)
-  std::uint64_t memory_budget = 0;       // bytes this rank may use; 0 = no limit
-  Stop stop;                             // polled between chunks of a level or class
-  std::string progress_label;            // non-empty: progress lines on runs over 2 s
+  int threads = 1;                  // OpenMP threads of this rank (>= 1)
+  bool keep_path = false;           // Dijkstra: record classes and walk the path back
+                                    // (BFS always walks it, for its cost, and returns it)
+  std::uint64_t memory_budget = 0;  // bytes this rank may use; 0 = no limit
+  Stop stop;                        // polled between chunks of a level or class
+  std::string progress_label;       // non-empty: progress lines (HPCPLAN_PROGRESS=1 or
+  double progress_after_s = 2.0;    // a terminal) once the run passes this many seconds
 };
 
 // What the engine did beyond the counters.
 struct Figures {
-  int in_tile_axes = 2;             // 2: 8 x 8 tiles on axes 0 and 1; 1: rows of 64 on axis 0
-  std::uint64_t tiles = 0;          // tiles of the whole lattice
-  std::uint64_t free_states = 0;    // free states of the whole lattice (exact)
-  std::uint64_t reached = 0;        // states reached (BFS) or settled (Dijkstra)
+  int in_tile_axes = 2;              // 2: 8 x 8 tiles on axes 0 and 1; 1: rows of 64 on axis 0
+  std::uint64_t tiles = 0;           // tiles of the whole lattice
+  std::uint64_t free_states = 0;     // free states of the whole lattice (exact)
+  std::uint64_t reached = 0;         // states reached (BFS) or settled (Dijkstra)
   std::uint64_t bytes_per_rank = 0;  // the most any rank allocated (its slab's store, marks,
                                      // window table, frontier lists at their peak)
   std::uint64_t bytes_total = 0;     // summed over ranks
   std::uint64_t bytes_needed = 0;    // this rank's planned bytes before the run (the check)
-  std::uint64_t levels = 0;          // BFS levels, or Dijkstra classes processed
+  std::uint64_t levels = 0;          // BFS levels, or the Dijkstra cost classes processed
   std::uint64_t buckets = 0;         // Dijkstra buckets (exchanges)
   int threads = 1;
   int ranks = 1;
-  std::vector<int> slab_layers;      // ranks + 1 layer bounds
-  std::uint64_t halo_messages = 0;   // summed over ranks
+  std::vector<int> slab_layers;     // ranks + 1 layer bounds
+  std::uint64_t halo_messages = 0;  // summed over ranks
   std::uint64_t halo_bytes = 0;
-  double exchange_ms = 0.0;          // the slowest rank's time in exchanges and reductions
+  double exchange_ms = 0.0;            // the slowest rank's time in exchanges and reductions
   std::vector<double> rank_search_ms;  // per rank
   std::vector<std::uint64_t> rank_expanded;
 };

@@ -64,8 +64,8 @@ struct SeedMoves {
   // comes as axes = 1 (BFS, where every move is one level).
   template <bool kSplit, class Out>
   [[gnu::always_inline]] static inline std::uint64_t expand(Word f, const FreeWindows::At& at,
-                                                             int stride, const std::int64_t* W,
-                                                             Out&& out) {
+                                                            int stride, const std::int64_t* W,
+                                                            Out&& out) {
     const Word* row = at.row;
     const int tau = at.tau;
     auto P = [row, stride](int w, int t) { return row[w * stride + t]; };
@@ -142,7 +142,7 @@ struct SeedMoves {
             face_d[b][sb] |= Shift::in(a, ga, q);
             if (const Word c = Shift::out(a, ga, q)) out(db + ga * W[a], c, kDiag);
           }
-        // With a later word axis: both neighbours and the target are whole tiles.
+          // With a later word axis: both neighbours and the target are whole tiles.
 #pragma GCC unroll 16
         for (int c = b + 1; c < D; ++c)
 #pragma GCC unroll 2

@@ -42,7 +42,7 @@ struct GridOptionsReport {
   std::string engine = "sparse";  // sparse (best-first) | dense (bit-parallel lattice)
   int key_words = 1;              // 64-bit words per packed state
   std::string visited_map;        // the state store used
-  std::string pruning = "none";  // none | jump_points (2D A*; its path is still unit moves)
+  std::string pruning = "none";   // none | jump_points (2D A*; its path is still unit moves)
 };
 
 // How the work was spread over ranks and exchanged.
