@@ -147,8 +147,8 @@ class CostClassDijkstra {
 #pragma omp barrier
 #pragma omp master
         {
-          tr_.exchange(as_bytes_of(threads_.front().out_low), as_bytes_of(threads_.back().out_high),
-                       in_low_bytes, in_high_bytes);
+          tr_.exchange(slabs_.below, as_bytes_of(threads_.front().out_low), slabs_.above,
+                       as_bytes_of(threads_.back().out_high), in_low_bytes, in_high_bytes);
           from_bytes(in_low_bytes, in_low);
           from_bytes(in_high_bytes, in_high);
         }

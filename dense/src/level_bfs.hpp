@@ -99,8 +99,8 @@ class LevelBfs {
         {
           const Thread& lo = threads_.front();
           const Thread& hi = threads_.back();
-          tr_.exchange(as_bytes_of(lo.out_low), as_bytes_of(hi.out_high), in_low_bytes,
-                       in_high_bytes);
+          tr_.exchange(slabs_.below, as_bytes_of(lo.out_low), slabs_.above,
+                       as_bytes_of(hi.out_high), in_low_bytes, in_high_bytes);
           from_bytes(in_low_bytes, in_low);
           from_bytes(in_high_bytes, in_high);
         }

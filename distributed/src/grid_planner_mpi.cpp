@@ -1,5 +1,7 @@
 #include "hpcplan/distributed/grid_planner_mpi.hpp"
 
+#include "hpcplan/distributed/mpi_slab_transport.hpp"
+
 #include <thread>
 
 #include "hpcplan/core/error.hpp"
@@ -153,6 +155,21 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
     report.serial =
         SerialReference{serial.result.status, serial.result.cost, serial.result.hops,
                         serial.result.counters.expanded, serial.result.counters.time_ms};
+  }
+
+  if (uses_dense_engine(field, options, report, comm.size())) {
+    // Slabs of the dense lattice, one per rank; one rank is the serial dense engine.
+    MpiSlabTransport transport(comm);
+    dr.scheme = comm.size() == 1 ? "serial" : "dense_slabs";
+    run_dense(field, problem, options, transport, comm.ranks_on_node(), report);
+    const dense::Figures& f = *report.dense;
+    dr.per_rank.assign(f.rank_expanded.size(), {});
+    for (std::size_t r = 0; r < dr.per_rank.size(); ++r) {
+      dr.per_rank[r].expanded = f.rank_expanded[r];
+      dr.per_rank[r].search_ms = f.rank_search_ms[r];
+    }
+    finish_grid_report(report);
+    return report;
   }
 
   switch (report.options.key_words) {

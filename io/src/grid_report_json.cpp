@@ -14,7 +14,9 @@ nlohmann::json distributed_json(const GridReport& report) {
   const GridDistribution& r = report.distribution;
   const int dims = report.problem.dims;
   nlohmann::json d;
-  if (!r.prefix_cuts.empty())
+  if (report.dense)
+    d["ownership"] = {{"dense_slabs", {{"axis", dims - 1}, {"layers", report.dense->slab_layers}}}};
+  else if (!r.prefix_cuts.empty())
     d["ownership"] = {
         {"prefix_cuts", {{"axes", partition::cut_axes(dims)}, {"at", r.prefix_cuts}}}};
   else if (r.slab_width > 0)
@@ -54,6 +56,12 @@ nlohmann::json distributed_json(const GridReport& report) {
   }
   const double expanded =
       static_cast<double>(std::max<std::uint64_t>(1, report.result.counters.expanded));
+  if (report.dense) {
+    // The dense engine's halo exchanges: all of its messages.
+    messages = report.dense->halo_messages;
+    bytes = report.dense->halo_bytes;
+    wait = report.dense->exchange_ms;
+  }
   d["messages_sent"] = messages;
   d["bytes_sent"] = bytes;
   d["records_sent"] = records;
@@ -203,7 +211,11 @@ std::string to_summary(const GridReport& report) {
       bytes += k.bytes_sent;
     }
     char owner[48];
-    if (!d.prefix_cuts.empty())
+    if (report.dense) {
+      messages = report.dense->halo_messages;
+      bytes = report.dense->halo_bytes;
+      std::snprintf(owner, sizeof owner, "slabs of the last axis");
+    } else if (!d.prefix_cuts.empty())
       std::snprintf(owner, sizeof owner, "owner prefix cuts (%zu)", d.prefix_cuts.size());
     else if (d.slab_width > 0)
       std::snprintf(owner, sizeof owner, "owner slabs of %d", d.slab_width);

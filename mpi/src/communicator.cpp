@@ -1,6 +1,7 @@
 #include "hpcplan/mpi/communicator.hpp"
 
 #include <chrono>
+#include <climits>
 #include <cstdlib>
 #include <thread>
 
@@ -67,6 +68,34 @@ std::uint64_t Communicator::allreduce_sum(std::uint64_t v) const {
 void Communicator::allreduce_sum(std::span<std::uint64_t> values) const {
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_UINT64_T, MPI_SUM,
                 comm_);
+}
+
+void Communicator::allreduce_max(std::span<std::uint64_t> values) const {
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_UINT64_T, MPI_MAX,
+                comm_);
+}
+
+void Communicator::allreduce_min(std::span<double> values) const {
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MIN,
+                comm_);
+}
+
+std::vector<std::byte> Communicator::allgather(std::span<const std::byte> mine) const {
+  if (mine.size() > static_cast<std::size_t>(INT_MAX))
+    throw RunError("allgather: over 2 GiB from one rank");
+  const int n = static_cast<int>(mine.size());
+  std::vector<int> counts(size_), offsets(size_);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
+  std::size_t total = 0;
+  for (int r = 0; r < size_; ++r) {
+    offsets[r] = static_cast<int>(total);
+    total += static_cast<std::size_t>(counts[r]);
+  }
+  if (total > static_cast<std::size_t>(INT_MAX)) throw RunError("allgather: over 2 GiB in all");
+  std::vector<std::byte> out(total);
+  MPI_Allgatherv(mine.data(), n, MPI_BYTE, out.data(), counts.data(), offsets.data(), MPI_BYTE,
+                 comm_);
+  return out;
 }
 
 void Communicator::broadcast(void* data, int bytes, int root) const {

@@ -102,7 +102,8 @@ bool uses_dense_engine(const GogField& field, const GridSearchOptions& options,
 
 void run_dense(const GogField& field, const GridProblem& problem, const GridSearchOptions& options,
                dense::SlabTransport& transport, int ranks_sharing_memory, GridReport& report) {
-  const dense::Query q = dense_query(field, problem, options, report, ranks_sharing_memory);
+  dense::Query q = dense_query(field, problem, options, report, ranks_sharing_memory);
+  if (transport.rank() != 0) q.progress_label.clear();  // one progress line per job
   dense::Result r = dense::search(field, q, transport);
   GridResult& out = report.result;
   out.status = r.status;

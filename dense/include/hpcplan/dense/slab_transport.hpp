@@ -22,10 +22,11 @@ class SlabTransport {
   virtual int ranks() const = 0;
   // Ranks sharing this rank's node (they share its memory budget).
   virtual int ranks_on_node() const { return 1; }
-  // Sends `down` to rank - 1 and `up` to rank + 1 (ignored where there is none) and returns
-  // what those ranks sent this one.
-  virtual void exchange(std::span<const std::byte> down, std::span<const std::byte> up,
-                        std::vector<std::byte>& from_below, std::vector<std::byte>& from_above) = 0;
+  // Sends `down` to rank `below` and `up` to rank `above` (-1: none; the nearest ranks whose
+  // slabs are not empty) and returns what those ranks sent this one.
+  virtual void exchange(int below, std::span<const std::byte> down, int above,
+                        std::span<const std::byte> up, std::vector<std::byte>& from_below,
+                        std::vector<std::byte>& from_above) = 0;
   // Element-wise over all ranks, in place.
   virtual void sum(std::span<std::uint64_t> values) = 0;
   virtual void max(std::span<std::uint64_t> values) = 0;
@@ -44,7 +45,7 @@ class LocalTransport final : public SlabTransport {
  public:
   int rank() const override { return 0; }
   int ranks() const override { return 1; }
-  void exchange(std::span<const std::byte>, std::span<const std::byte>,
+  void exchange(int, std::span<const std::byte>, int, std::span<const std::byte>,
                 std::vector<std::byte>& from_below, std::vector<std::byte>& from_above) override {
     from_below.clear();
     from_above.clear();

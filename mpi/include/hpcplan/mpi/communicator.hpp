@@ -4,6 +4,7 @@
 // layer apart from the algorithm).
 #include <mpi.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -41,8 +42,12 @@ class Communicator {
   double allreduce_min(double v) const;
   double allreduce_max(double v) const;
   std::uint64_t allreduce_sum(std::uint64_t v) const;
-  // Element-wise sum of a small vector on every rank.
+  // Element-wise sum / max / min of a small vector on every rank, in place.
   void allreduce_sum(std::span<std::uint64_t> values) const;
+  void allreduce_max(std::span<std::uint64_t> values) const;
+  void allreduce_min(std::span<double> values) const;
+  // Every rank's bytes (any length each), concatenated in rank order, on every rank.
+  std::vector<std::byte> allgather(std::span<const std::byte> mine) const;
   void broadcast(void* data, int bytes, int root) const;
   // Gathers `bytes` from every rank on `root` (result.size() == size*bytes there).
   std::vector<unsigned char> gather(const void* data, int bytes, int root) const;

@@ -1,0 +1,47 @@
+#pragma once
+// The dense engine's slab transport over MPI: the halo exchange with the neighbouring ranks
+// (mpi::NeighbourExchange) and the per-level reductions on the communicator. The dense engine
+// itself never sees MPI.
+//
+// Threads: used from the engine's master thread of each rank (MPI_THREAD_FUNNELED).
+#include "hpcplan/core/stopwatch.hpp"
+#include "hpcplan/dense/slab_transport.hpp"
+#include "hpcplan/mpi/communicator.hpp"
+#include "hpcplan/mpi/neighbour_exchange.hpp"
+
+namespace hpcplan::distributed {
+
+class MpiSlabTransport final : public dense::SlabTransport {
+ public:
+  explicit MpiSlabTransport(const mpi::Communicator& comm) : comm_(comm), halo_(comm) {}
+  int rank() const override { return comm_.rank(); }
+  int ranks() const override { return comm_.size(); }
+  int ranks_on_node() const override { return comm_.ranks_on_node(); }
+  void exchange(int below, std::span<const std::byte> down, int above,
+                std::span<const std::byte> up, std::vector<std::byte>& from_below,
+                std::vector<std::byte>& from_above) override {
+    const Stopwatch clock;
+    halo_.exchange(below, down, above, up, from_below, from_above);
+    messages_sent = halo_.traffic().messages_sent;
+    bytes_sent = halo_.traffic().bytes_sent;
+    exchange_ms += clock.milliseconds();
+  }
+  void sum(std::span<std::uint64_t> v) override { timed([&] { comm_.allreduce_sum(v); }); }
+  void max(std::span<std::uint64_t> v) override { timed([&] { comm_.allreduce_max(v); }); }
+  void min(std::span<double> v) override { timed([&] { comm_.allreduce_min(v); }); }
+  std::vector<std::byte> allgather(std::span<const std::byte> mine) override {
+    return comm_.allgather(mine);
+  }
+
+ private:
+  template <class F>
+  void timed(F&& f) {
+    const Stopwatch clock;
+    f();
+    exchange_ms += clock.milliseconds();
+  }
+  const mpi::Communicator& comm_;
+  mpi::NeighbourExchange halo_;
+};
+
+}  // namespace hpcplan::distributed
