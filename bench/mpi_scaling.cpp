@@ -1,4 +1,6 @@
-// Strong-scaling driver for the distributed grid search; run it under mpirun -np P.
+// Strong-scaling driver for the distributed grid search; run it under mpirun -np P. With
+// --engine sparse (the default) it sweeps the best-first engine's schedules and ownerships;
+// with --engine dense it times the dense engine's slabs (one configuration) the same way.
 // For one problem it times, in `--repeats` rounds, each round
 //   - the serial engine on rank 0 alone (the other ranks sleep in a barrier), unless
 //     --no-serial, then
@@ -83,6 +85,12 @@ int main(int argc, char** argv) {
   bool balanced_cuts = false;
   std::vector<std::uint32_t> fixed_cuts;
   std::string csv;
+  std::string engine = "sparse";
+  app.add_option("--engine", engine,
+                 "sparse: the best-first engine, swept over --modes and ownerships; dense: the "
+                 "bit-parallel engine's slabs (one configuration; --threads per rank)")
+      ->check(CLI::IsMember({"sparse", "dense"}));
+  app.add_option("--threads", o.threads, "Dense engine: OpenMP threads per rank (default 1)");
   app.add_option("--dims", p.dims)->required();
   app.add_option("--extent", p.extent);
   app.add_option("--density", p.gog.density);
@@ -119,6 +127,8 @@ int main(int argc, char** argv) {
   const bool root = comm.rank() == 0;
   try {
     o.algorithm = parse_grid_algorithm(algo);
+    o.engine = engine == "dense" ? GridEngine::dense : GridEngine::sparse;
+    if (o.engine == GridEngine::dense && o.threads == 0) o.threads = 1;
     // The ownerships to time: each slab width with no coarsening, each coarsening with the
     // hash, the cuts given and the balanced cuts.
     struct Owner {
@@ -143,6 +153,13 @@ int main(int argc, char** argv) {
       owners.push_back({0, 0, cuts});
     }
     std::vector<distributed::DistGridOptions> configs;
+    // The dense engine has one distribution (slabs balanced by free states): one configuration.
+    if (o.engine == GridEngine::dense) {
+      modes = {"async"};
+      batches = {batches.front()};
+      owners = {Owner{}};
+      filters = {filters.front()};
+    }
     for (const auto& mode : modes)
       for (std::size_t batch : batches)
         for (const Owner& owner : owners)
@@ -232,7 +249,8 @@ int main(int argc, char** argv) {
       char line[2048];
       std::snprintf(line, sizeof line,
                     "%s,%d,%d,%d,%.2f,%s,%s,%zu,%d,%d,%d,%s,%.6f,%llu,%llu,%.3f,%.3f,%.3f,%.3f,"
-                    "%.3f,%.5f,%.2f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%s,%.3f,%.3f,%.3f,%.3f\n",
+                    "%.3f,%.5f,%.2f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%s,%.3f,%.3f,%.3f,%.3f,"
+                    "%s,%d\n",
                     label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
                     g.distribution.scheme.c_str(), configs[c].batch, configs[c].coarsen_shift,
                     configs[c].sent_filter_log2, repeats,
@@ -245,7 +263,8 @@ int main(int argc, char** argv) {
                     lowest(ratio[c]), highest(ratio[c]), median(of_ceiling[c]),
                     lowest(of_ceiling[c]), highest(of_ceiling[c]), configs[c].slab_width,
                     cuts.c_str(), quantile(of_ceiling[c], 0.25), quantile(of_ceiling[c], 0.75),
-                    lowest(serial_t), highest(serial_t));
+                    lowest(serial_t), highest(serial_t), g.options.engine.c_str(),
+                    g.dense ? g.dense->threads : 1);
       rows << line;
       std::fputs(line, stderr);
     }
@@ -253,13 +272,14 @@ int main(int argc, char** argv) {
       char line[512];
       std::snprintf(line, sizeof line,
                     "%s,%d,%d,%d,%.2f,%s,ceiling,0,0,0,%d,solved,%.6f,%llu,%llu,%.3f,%.3f,%.3f,"
-                    "%.3f,%.3f,0,0,0,1,%.3f,%.3f,1,1,1,0,,1,1,%.3f,%.3f\n",
+                    "%.3f,%.3f,0,0,0,1,%.3f,%.3f,1,1,1,0,,1,1,%.3f,%.3f,%s,%d\n",
                     label.c_str(), comm.size(), p.dims, p.extent, p.gog.density, algo.c_str(),
                     repeats, serial_cost, static_cast<unsigned long long>(serial_expanded),
                     static_cast<unsigned long long>(serial_expanded), serial_ms,
                     serial_ms * comm.size() / median(crowd_ratio), median(crowd_ratio),
                     median(crowd_ratio), median(crowd_ratio) / comm.size(), lowest(crowd_ratio),
-                    highest(crowd_ratio), lowest(serial_t), highest(serial_t));
+                    highest(crowd_ratio), lowest(serial_t), highest(serial_t), engine.c_str(),
+                    o.engine == GridEngine::dense ? o.threads : 1);
       rows << line;
       std::fputs(line, stderr);
     }
@@ -270,7 +290,7 @@ int main(int argc, char** argv) {
           "speedup_vs_serial,efficiency,"
           "messages_per_expansion,bytes_per_expansion,workload_deviation_percent,"
           "search_overhead,speedup_min,speedup_max,of_ceiling,of_ceiling_min,of_ceiling_max,"
-          "slabs,cuts,of_ceiling_q1,of_ceiling_q3,serial_min_ms,serial_max_ms\n";
+          "slabs,cuts,of_ceiling_q1,of_ceiling_q3,serial_min_ms,serial_max_ms,engine,threads\n";
       if (csv.empty()) {
         std::fputs(header, stdout);
         std::fputs(rows.str().c_str(), stdout);

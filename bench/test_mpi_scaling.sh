@@ -54,3 +54,19 @@ rc=$?
 ((rc == 2)) || fail "two cuts for two ranks: exit $rc"
 grep -q "P - 1 positions" "$tmp/err" || fail "bad cuts: $(cat "$tmp/err")"
 echo "ok: cuts alone, and bad cuts refused"
+
+# The dense engine's slabs: one configuration beside the ceiling, at the serial optimum; its
+# best arguments rerun it.
+rm -f "$csv"
+run --repeats 2 --engine dense --threads 1 --ceiling --label dense4
+python3 - "$csv" <<'EOF2' || fail "dense rows"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert [r["scheme"] for r in rows] == ["dense_slabs", "ceiling"], rows
+assert rows[0]["engine"] == "dense" and rows[0]["threads"] == "1", rows[0]
+assert rows[0]["status"] == "solved", rows[0]
+assert abs(float(rows[0]["cost"]) - float(rows[1]["cost"])) < 1e-9, rows
+EOF2
+args=$(python3 "$src/scripts/scaling_table.py" --best-args "$csv" dense4) || fail "dense --best-args"
+[[ $args == "--engine dense --threads 1" ]] || fail "dense --best-args gave '$args'"
+echo "ok: the dense engine's slabs timed and rerun from their best arguments"

@@ -25,6 +25,8 @@ def best_rows(rows):
 
 
 def owner_args(r):
+    if r.get("engine") == "dense":
+        return ["--engine", "dense", "--threads", r.get("threads", "1")]
     if r.get("cuts"):
         return ["--cuts", r["cuts"].replace(";", ",")]
     if r.get("slabs", "0") not in ("", "0"):
@@ -33,7 +35,7 @@ def owner_args(r):
 
 
 def owner_name(r):
-    """The ownership in words: "slabs 6", "cuts 53", "coarsen 1"."""
+    """The ownership in words: "slabs 6", "cuts 53", "coarsen 1", "engine dense --threads 1"."""
     return " ".join(owner_args(r))[2:]
 
 
@@ -41,7 +43,8 @@ if sys.argv[1] == "--best-args":
     rows = list(csv.DictReader(open(sys.argv[2])))
     for (label, _), r in best_rows(rows).items():
         if label == sys.argv[3]:
-            print(" ".join(["--modes", r["scheme"], "--batches", r["batch"]] + owner_args(r)))
+            mode = [] if r.get("engine") == "dense" else ["--modes", r["scheme"], "--batches", r["batch"]]
+            print(" ".join(mode + owner_args(r)))
             sys.exit(0)
     sys.exit(f"scaling_table: no best row for {sys.argv[3]}")
 
@@ -51,8 +54,8 @@ cols = ["label", "ranks", "dims", "extent", "scheme", "batch", "coarsen", "sent_
         "messages_per_expansion", "bytes_per_expansion", "workload_deviation_percent",
         "search_overhead", "speedup_min", "speedup_max", "of_ceiling", "of_ceiling_min",
         "of_ceiling_max", "slabs", "cuts", "of_ceiling_q1", "of_ceiling_q3", "serial_min_ms",
-        "serial_max_ms"]
-# Older CSVs lack the spread, slab and cut columns.
+        "serial_max_ms", "engine", "threads"]
+# Older CSVs lack the spread, slab, cut, engine and thread columns.
 cols = [c for c in cols if all(c in r for r in rows)]
 print("| " + " | ".join(cols) + " |")
 print("|" + "---|" * len(cols))

@@ -96,6 +96,7 @@ Result run_shape(const GogField& field, const Query& q, SlabTransport& tr) {
   f.threads = slabs.threads;
   f.ranks = tr.ranks();
   f.slab_layers = slabs.rank_layers;
+  f.table_bytes = windows.bytes();
   // Every window mask of the table answers 64 validity questions of the field, once.
   r.counters.collision_checks = windows.bytes() / sizeof(Word) * 64;
   double free = 0.0;

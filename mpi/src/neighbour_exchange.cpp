@@ -44,8 +44,8 @@ void NeighbourExchange::exchange(int below, std::span<const std::byte> to_below,
   for (int side = 0; side < 2; ++side) {
     if (peer[side] < 0) continue;
     if (recv_size[side] > 0)
-      MPI_Irecv(into[side]->data(), checked_count(recv_size[side]), MPI_BYTE, peer[side],
-                kDataTag, comm, &req[n++]);
+      MPI_Irecv(into[side]->data(), checked_count(recv_size[side]), MPI_BYTE, peer[side], kDataTag,
+                comm, &req[n++]);
     if (!out[side].empty()) {
       MPI_Isend(out[side].data(), checked_count(out[side].size()), MPI_BYTE, peer[side], kDataTag,
                 comm, &req[n++]);

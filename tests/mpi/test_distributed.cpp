@@ -14,6 +14,7 @@
 #include <map>
 
 #include "hpcplan/core/splitmix64.hpp"
+#include "hpcplan/dense/slab_plan.hpp"
 #include "hpcplan/distributed/grid_planner_mpi.hpp"
 #include "hpcplan/mpi/communicator.hpp"
 #include "hpcplan/partition/ownership.hpp"
@@ -117,6 +118,7 @@ TEST(Distributed, RandomInstancesMatchTheSerialEngine) {
       for (const Config& c : configs) {
         GridSearchOptions o;
         o.algorithm = parse_grid_algorithm(c.algo);
+        o.engine = GridEngine::sparse;  // the best-first engine\'s schedules
         o.keep_path = true;
         if (o.algorithm == GridAlgorithm::wastar) o.weight = 1.8;
         distributed::DistGridOptions dopt;
@@ -174,6 +176,7 @@ TEST(Distributed, NoPathIsAgreedByEveryRankForEveryScheme) {
     for (auto scheme : {distributed::Scheme::async, distributed::Scheme::bulk_sync}) {
       GridSearchOptions o;
       o.algorithm = parse_grid_algorithm(algo);
+      o.engine = GridEngine::sparse;  // the best-first engine\'s schedules
       distributed::DistGridOptions d;
       d.scheme = scheme;
       const GridReport r = distributed::solve_grid_distributed(p, o, d, *g_comm);
@@ -190,6 +193,7 @@ TEST(Distributed, BudgetExceededStopsEveryRank) {
     for (auto scheme : {distributed::Scheme::async, distributed::Scheme::bulk_sync}) {
       GridSearchOptions o;
       o.algorithm = parse_grid_algorithm(algo);
+      o.engine = GridEngine::sparse;  // the best-first engine\'s schedules
       o.max_states = 2000;
       distributed::DistGridOptions d;
       d.scheme = scheme;
@@ -209,6 +213,7 @@ TEST(Distributed, TimeLimitStopsEveryRank) {
   for (auto scheme : {distributed::Scheme::async, distributed::Scheme::bulk_sync}) {
     GridSearchOptions o;
     o.algorithm = GridAlgorithm::dijkstra;
+    o.engine = GridEngine::sparse;  // the best-first engine\'s schedules
     o.time_limit_s = 0.2;
     distributed::DistGridOptions d;
     d.scheme = scheme;
@@ -234,6 +239,7 @@ TEST(Distributed, RankSimulatorPredictsTheRealSplit) {
   p.extent = 14;
   GridSearchOptions o;
   o.algorithm = GridAlgorithm::dijkstra;
+  o.engine = GridEngine::sparse;  // the best-first engine\'s schedules
   for (int k : {0, 1}) {
     const partition::RankSimulation sim = partition::simulate_ranks(p, o, {p_ranks}, {k});
     distributed::DistGridOptions d;
@@ -273,10 +279,174 @@ TEST(Distributed, StartEqualsGoal) {
   for (const char* algo : {"astar", "bfs"}) {
     GridSearchOptions o;
     o.algorithm = parse_grid_algorithm(algo);
+    o.engine = GridEngine::sparse;  // the best-first engine\'s schedules
     const GridReport r = distributed::solve_grid_distributed(p, o, {}, *g_comm);
     EXPECT_EQ(r.result.status, search::Status::solved);
     EXPECT_EQ(r.result.cost, 0.0);
     EXPECT_EQ(r.result.hops, 0u);
+  }
+}
+
+// The dense engine's slabs: every rank count gives the serial dense engine's answer, path and
+// counts (so the walk back crosses slab faces correctly), which the oracle-checked serial
+// engine vouches for; from 1D up, with extents that leave some ranks few or no layers, and 1 or
+// 2 threads per rank.
+TEST(DenseSlabs, EveryRankCountGivesTheSerialAnswerPathAndCounts) {
+  SplitMix64 rng(4242);
+  int solved = 0, compared = 0;
+  const int extents[] = {0, 300, 40, 17, 9, 6, 5};
+  for (int d = 1; d <= 6; ++d)
+    for (int instance = 0; instance < 3; ++instance) {
+      GridProblem p;
+      p.dims = d;
+      p.extent = extents[d];
+      p.gog.seed = rng.next();
+      p.gog.density = 0.25 + 0.4 * rng.next_unit();
+      if (d <= 3 && instance == 2) p.connectivity = Connectivity::full;
+      for (const char* algo : {"bfs", "dijkstra"})
+        for (int threads : {1, 2}) {
+          GridSearchOptions o;
+          o.algorithm = parse_grid_algorithm(algo);
+          o.engine = GridEngine::dense;
+          o.keep_path = true;
+          o.threads = threads;
+          const GridReport r = distributed::solve_grid_distributed(p, o, {}, *g_comm);
+          if (!root()) continue;
+          GridSearchOptions so = o;
+          so.threads = 1;
+          const GridReport s = solve_grid(p, so);
+          SCOPED_TRACE(::testing::Message()
+                       << "d=" << d << " seed=" << p.gog.seed << " " << algo
+                       << " threads=" << threads << " ranks=" << g_comm->size());
+          ++compared;
+          EXPECT_EQ(r.options.engine, "dense");
+          EXPECT_EQ(r.distribution.scheme, g_comm->size() == 1 ? "serial" : "dense_slabs");
+          EXPECT_EQ(r.result.status, s.result.status);
+          EXPECT_EQ(r.result.cost, s.result.cost);
+          EXPECT_EQ(r.result.hops, s.result.hops);
+          EXPECT_EQ(r.result.path, s.result.path);
+          EXPECT_EQ(r.result.counters.expanded, s.result.counters.expanded);
+          EXPECT_EQ(r.result.counters.generated, s.result.counters.generated);
+          ASSERT_TRUE(r.dense.has_value());
+          EXPECT_EQ(r.dense->slab_layers.size(), static_cast<std::size_t>(g_comm->size() + 1));
+          std::uint64_t expanded = 0;
+          for (const auto& k : r.distribution.per_rank) expanded += k.expanded;
+          EXPECT_EQ(expanded, r.result.counters.expanded);
+          if (r.result.status == search::Status::solved) {
+            ++solved;
+            expect_valid_path(r, p);
+          }
+        }
+    }
+  if (root()) {
+    EXPECT_GE(compared, 70);
+    EXPECT_GE(solved, compared / 2);
+  }
+}
+
+// A path that leaves a slab and comes back: start and goal lie in the top layer of the first
+// slab, and the path (found among random fields) climbs into the second slab between them,
+// so the walk back crosses the face twice.
+TEST(DenseSlabs, APathThatCrossesASlabFaceAndComesBack) {
+  if (g_comm->size() < 2) GTEST_SKIP() << "needs two slabs";
+  GridProblem found;
+  bool have = false;
+  for (std::uint64_t seed = 1; seed < 400 && !have; ++seed) {
+    GridProblem p;
+    p.dims = 3;
+    p.extent = 24;
+    p.gog.seed = seed;
+    p.gog.density = 0.3 + 0.05 * static_cast<double>(seed % 6);
+    const GogField field(3, 24, p.gog);
+    const dense::TileLayout layout(3, 24, 2);
+    const int face =
+        dense::balanced_slabs(dense::free_states_per_layer(field, layout), g_comm->size())[1];
+    if (face < 1) continue;
+    std::vector<int> a{0, 0, face - 1}, b{23, 23, face - 1};
+    while (a[0] < 23 && !field.is_free(a)) ++a[0];
+    while (b[0] > 0 && !field.is_free(b)) --b[0];
+    if (!field.is_free(a) || !field.is_free(b)) continue;
+    p.start = a;
+    p.goal = b;
+    GridSearchOptions o;
+    o.algorithm = GridAlgorithm::bfs;
+    o.engine = GridEngine::dense;
+    o.keep_path = true;
+    o.threads = 1;
+    const GridReport s = solve_grid(p, o);
+    if (s.result.status != search::Status::solved) continue;
+    bool above = false;
+    for (const auto& c : s.result.path) above = above || c[2] >= face;
+    if (above) {
+      found = p;
+      have = true;
+    }
+  }
+  ASSERT_TRUE(have);
+  for (const char* algo : {"bfs", "dijkstra"}) {
+    GridSearchOptions o;
+    o.algorithm = parse_grid_algorithm(algo);
+    o.engine = GridEngine::dense;
+    o.keep_path = true;
+    o.threads = 1;
+    const GridReport r = distributed::solve_grid_distributed(found, o, {}, *g_comm);
+    if (!root()) continue;
+    const GridReport s = solve_grid(found, o);
+    EXPECT_EQ(r.result.path, s.result.path) << algo;
+    EXPECT_EQ(r.result.cost, s.result.cost) << algo;
+    expect_valid_path(r, found);
+  }
+}
+
+// Each rank allocates its slab, not the lattice: the figure falls as about 1/P of the serial
+// one (the window table and a layer's lists are per rank whatever P).
+TEST(DenseSlabs, BytesPerRankAreAboutAShareOfTheSerialFigure) {
+  GridProblem p;
+  p.dims = 3;
+  p.extent = 200;  // 200 layers: slabs of nearly equal width for any P here
+  GridSearchOptions o;
+  o.algorithm = GridAlgorithm::bfs;
+  o.engine = GridEngine::dense;
+  o.threads = 1;
+  const GridReport r = distributed::solve_grid_distributed(p, o, {}, *g_comm);
+  if (!root()) return;
+  const GridReport s = solve_grid(p, o);
+  ASSERT_TRUE(r.dense && s.dense);
+  const double P = g_comm->size();
+  const double table = static_cast<double>(s.dense->table_bytes);
+  EXPECT_EQ(r.dense->table_bytes, s.dense->table_bytes);
+  const double serial = static_cast<double>(s.dense->bytes_per_rank) - table;
+  const double share = static_cast<double>(r.dense->bytes_per_rank) - table;
+  // The slabs balance free states, not layers: the widest slab may hold a few more layers
+  // (and its frontier lists a few more entries).
+  EXPECT_LE(share, serial / P * 1.4 + 64e3) << "P = " << P << ", serial " << serial;
+  if (P > 1) {
+    EXPECT_LT(share, serial * 0.75) << "P = " << P;
+  }
+  EXPECT_GE(static_cast<double>(r.dense->bytes_total), share * P * 0.5);
+}
+
+// no_path, a stop and an over-budget refusal reach every rank alike.
+TEST(DenseSlabs, NoPathTimeoutAndBudgetAreAgreedByEveryRank) {
+  const GridProblem wall = walled_line();
+  for (const char* algo : {"bfs", "dijkstra"}) {
+    GridSearchOptions o;
+    o.algorithm = parse_grid_algorithm(algo);
+    o.engine = GridEngine::dense;
+    o.threads = 1;
+    EXPECT_EQ(distributed::solve_grid_distributed(wall, o, {}, *g_comm).result.status,
+              search::Status::no_path)
+        << algo;
+    GridProblem big;
+    big.dims = 6;
+    big.extent = 30;
+    o.time_limit_s = 0.05;
+    EXPECT_EQ(distributed::solve_grid_distributed(big, o, {}, *g_comm).result.status,
+              search::Status::timeout)
+        << algo;
+    o.time_limit_s = 0;
+    o.memory_budget = 100'000;
+    EXPECT_THROW(distributed::solve_grid_distributed(big, o, {}, *g_comm), InputError) << algo;
   }
 }
 
@@ -372,6 +542,7 @@ TEST(Distributed, BalancedPrefixCutsSplitTheWorkEvenly) {
   p.extent = 16;
   GridSearchOptions o;
   o.algorithm = GridAlgorithm::dijkstra;
+  o.engine = GridEngine::sparse;  // the best-first engine\'s schedules
   const partition::RankSimulation sim = partition::simulate_ranks(p, o, {p_ranks}, {0});
   distributed::DistGridOptions d;
   d.scheme = distributed::Scheme::bulk_sync;

@@ -62,6 +62,7 @@ struct Figures {
                                      // window table, frontier lists at their peak)
   std::uint64_t bytes_total = 0;     // summed over ranks
   std::uint64_t bytes_needed = 0;    // this rank's planned bytes before the run (the check)
+  std::uint64_t table_bytes = 0;     // of which the window table (every rank holds one)
   std::uint64_t levels = 0;          // BFS levels, or the Dijkstra cost classes processed
   std::uint64_t buckets = 0;         // Dijkstra buckets (exchanges)
   int threads = 1;

@@ -26,9 +26,15 @@ class MpiSlabTransport final : public dense::SlabTransport {
     bytes_sent = halo_.traffic().bytes_sent;
     exchange_ms += clock.milliseconds();
   }
-  void sum(std::span<std::uint64_t> v) override { timed([&] { comm_.allreduce_sum(v); }); }
-  void max(std::span<std::uint64_t> v) override { timed([&] { comm_.allreduce_max(v); }); }
-  void min(std::span<double> v) override { timed([&] { comm_.allreduce_min(v); }); }
+  void sum(std::span<std::uint64_t> v) override {
+    timed([&] { comm_.allreduce_sum(v); });
+  }
+  void max(std::span<std::uint64_t> v) override {
+    timed([&] { comm_.allreduce_max(v); });
+  }
+  void min(std::span<double> v) override {
+    timed([&] { comm_.allreduce_min(v); });
+  }
   std::vector<std::byte> allgather(std::span<const std::byte> mine) override {
     return comm_.allgather(mine);
   }
