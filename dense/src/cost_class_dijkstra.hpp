@@ -56,7 +56,7 @@ class CostClassDijkstra {
  public:
   CostClassDijkstra(const GogField& field, const Query& q, SlabTransport& tr,
                     const TileLayout& layout, const FreeWindows& windows, const Kernel& kernel,
-                    const Slabs& slabs)
+                    const SlabMap& slabs)
       : field_(field),
         q_(q),
         tr_(tr),
@@ -78,19 +78,17 @@ class CostClassDijkstra {
   Result run() {
     Result res;
     Stopwatch clock;
-    const std::uint64_t tiles = slabs_.b1 - slabs_.b0;
-    settled_ = ZeroedWords(tiles);
-    if (q_.keep_path) keys_ = ZeroedWords(tiles * 64);
-    threads_.resize(slabs_.threads);
-    for (int t = 0; t < slabs_.threads; ++t) {
-      threads_[t].b0 = slabs_.thread_tiles[t];
-      threads_[t].b1 = slabs_.thread_tiles[t + 1];
-    }
+    const int T = slabs_.threads;
+    settled_ = ZeroedWords(slabs_.store_tiles);
+    if (q_.keep_path) keys_ = ZeroedWords(slabs_.store_tiles * 64);
+    threads_.resize(T);
+    for (Thread& t : threads_) t.out_local.resize(T);
+    inbox_.resize(T);
     const std::uint64_t start_tile = layout_.tile_of(q_.start);
     goal_tile_ = layout_.tile_of(q_.goal);
     goal_bit_ = Word{1} << layout_.bit_of(q_.goal);
-    if (!slabs_.empty() && start_tile >= slabs_.b0 && start_tile < slabs_.b1) {
-      Thread& th = threads_[thread_of(start_tile)];
+    if (slabs_.of_tile(start_tile).rank == slabs_.rank) {
+      Thread& th = threads_[slabs_.of_tile(start_tile).thread];
       th.pending[ClassKey{}].push_back({start_tile, Word{1} << layout_.bit_of(q_.start)});
     }
     const std::uint64_t fixed = settled_.bytes() + keys_.bytes() + windows_.bytes();
@@ -100,12 +98,12 @@ class CostClassDijkstra {
     std::uint64_t buckets = 0, settled_total = 0, peak_pending = 1;
     Status status = Status::no_path;
     bool solved = false, done = false;
-    std::vector<std::byte> in_low_bytes, in_high_bytes;
-    std::vector<ClassEntry> in_low, in_high;
+    std::vector<std::byte> from_below, from_above;
+    std::vector<ClassEntry> down, up, received;
     const std::uint64_t budget = q_.memory_budget;
     std::uint64_t list_peak = 0;
 
-#pragma omp parallel num_threads(slabs_.threads) if (slabs_.threads > 1)
+#pragma omp parallel num_threads(T) if (T > 1)
     {
       const int id = omp_get_thread_num();
       Thread& me = threads_[id];
@@ -125,42 +123,46 @@ class CostClassDijkstra {
               stopped = true;
               break;
             }
-            Word& s = settled_[e.tile - slabs_.b0];
+            const Block& b = slabs_.of_tile(e.tile);
+            Word& s = settled_[b.store + (e.tile - b.lo)];
             const Word fresh = e.bits & ~s;
             if (!fresh) continue;
             s |= fresh;
             me.settled += static_cast<std::uint64_t>(std::popcount(fresh));
-            if (q_.keep_path) record(e.tile, fresh, key);
+            if (q_.keep_path) record(b, e.tile, fresh, key);
             if (e.tile == goal_tile_ && (fresh & goal_bit_)) {
               me.goal_hit = true;
               me.goal_key = key;
             }
-            expand(me, e.tile, fresh, key, into);
+            expand(me, b, e.tile, fresh, key, into);
           }
           // Classes that settled a state, a set independent of ranks and threads (a class
           // whose states all settled earlier elsewhere is not counted).
           if (me.settled > settled_before) me.processed.push_back(key);
           me.recycle(std::move(list));
         }
-        if (budget && list_bytes(me) * slabs_.threads + fixed > budget)
-          me.stop = std::max(me.stop, 2);
+        if (budget && list_bytes(me) * T + fixed > budget) me.stop = std::max(me.stop, 2);
 #pragma omp barrier
 #pragma omp master
         {
-          tr_.exchange(slabs_.below, as_bytes_of(threads_.front().out_low), slabs_.above,
-                       as_bytes_of(threads_.back().out_high), in_low_bytes, in_high_bytes);
-          from_bytes(in_low_bytes, in_low);
-          from_bytes(in_high_bytes, in_high);
+          down.clear();
+          up.clear();
+          for (const Thread& t : threads_) {
+            down.insert(down.end(), t.out_down.begin(), t.out_down.end());
+            up.insert(up.end(), t.out_up.begin(), t.out_up.end());
+          }
+          tr_.exchange(slabs_.below, as_bytes_of(down), slabs_.above, as_bytes_of(up), from_below,
+                       from_above);
+          for (auto& box : inbox_) box.clear();
+          for (const std::vector<std::byte>* bytes : {&from_below, &from_above}) {
+            from_bytes(*bytes, received);
+            for (const ClassEntry& e : received) inbox_[slabs_.of_tile(e.tile).thread].push_back(e);
+          }
         }
 #pragma omp barrier
-        if (id > 0)
-          for (const ClassEntry& e : threads_[id - 1].out_high) file(me, e);
-        if (id + 1 < slabs_.threads)
-          for (const ClassEntry& e : threads_[id + 1].out_low) file(me, e);
-        if (id == 0)
-          for (const ClassEntry& e : in_low) file(me, e);
-        if (id + 1 == slabs_.threads)
-          for (const ClassEntry& e : in_high) file(me, e);
+        for (const Thread& t : threads_)
+          for (const ClassEntry& e : t.out_local[id]) file(me, e);
+        for (const ClassEntry& e : inbox_[id]) file(me, e);
 #pragma omp barrier
 #pragma omp master
         {
@@ -204,8 +206,9 @@ class CostClassDijkstra {
           progress.update("cost", bucket, settled_total);
         }
 #pragma omp barrier
-        me.out_low.clear();
-        me.out_high.clear();
+        me.out_down.clear();
+        me.out_up.clear();
+        for (auto& box : me.out_local) box.clear();
       }
     }
 
@@ -276,10 +279,10 @@ class CostClassDijkstra {
     std::map<ClassKey, std::vector<Entry>> pending;
     Dedup dedup[5];  // per move length
     std::uint32_t epoch = 0;
-    std::vector<ClassEntry> out_low, out_high;
-    std::vector<std::vector<Entry>> spare;  // emptied lists, reused for new classes
-    std::uint64_t b0 = 0, b1 = 0;
-    std::vector<ClassKey> processed;  // the classes this thread took, in order
+    std::vector<ClassEntry> out_down, out_up;        // to the ranks below and above
+    std::vector<std::vector<ClassEntry>> out_local;  // to this rank's threads
+    std::vector<std::vector<Entry>> spare;           // emptied lists, reused for new classes
+    std::vector<ClassKey> processed;                 // the classes this thread took, in order
     std::uint64_t settled = 0, generated = 0, reported = 0;
     bool goal_hit = false;
     ClassKey goal_key;
@@ -309,13 +312,9 @@ class CostClassDijkstra {
     }
   };
 
-  int thread_of(std::uint64_t tile) const {
-    int t = 0;
-    while (tile >= slabs_.thread_tiles[t + 1]) ++t;
-    return t;
-  }
   static std::uint64_t list_bytes(const Thread& t) {
-    std::uint64_t n = (t.out_low.capacity() + t.out_high.capacity()) * sizeof(ClassEntry);
+    std::uint64_t n = (t.out_down.capacity() + t.out_up.capacity()) * sizeof(ClassEntry);
+    for (const auto& box : t.out_local) n += box.capacity() * sizeof(ClassEntry);
     for (const auto& [key, list] : t.pending) n += list.capacity() * sizeof(Entry) + 64;
     for (const auto& list : t.spare) n += list.capacity() * sizeof(Entry);
     return n;
@@ -329,40 +328,49 @@ class CostClassDijkstra {
     return false;
   }
 
-  void record(std::uint64_t tile, Word fresh, const ClassKey& key) {
+  void record(const Block& b, std::uint64_t tile, Word fresh, const ClassKey& key) {
     if (!key.packable())
       throw RunError(
           "dense Dijkstra: a path cost beyond 65,535 moves of one kind cannot be "
           "recorded for --path; run without --path");
-    std::uint64_t* k = keys_.data() + (tile - slabs_.b0) * 64;
+    std::uint64_t* k = keys_.data() + (b.store + (tile - b.lo)) * 64;
     for (Word w = fresh; w; w &= w - 1) k[std::countr_zero(w)] = key.packed() + 1;
   }
 
   // A target outside this thread's tiles goes to an outbox; inside, into its class's list
   // unless already settled.
-  void expand(Thread& me, std::uint64_t tile, Word fresh, const ClassKey& key,
+  // A target in the source's block goes into its class's list unless already settled; one in
+  // the next block either side, to an outbox for that block's owner.
+  void expand(Thread& me, const Block& b, std::uint64_t tile, Word fresh, const ClassKey& key,
               std::vector<Entry>** into) {
     int t[kMaxDims];
     layout_.tile_coords(tile, t);
     FreeWindows::At at;
     windows_.locate(t, at);
-    const std::uint64_t b0 = me.b0, b1 = me.b1;
+    const int j = slabs_.layer_block[t[D - 1]];
     me.generated += kernel_.template expand<true>(
         fresh, at, windows_.stride(), stride_.data(), [&](std::int64_t delta, Word bits, int axes) {
           const std::uint64_t u = tile + static_cast<std::uint64_t>(delta);
-          if (u >= b0 && u < b1) {
-            const Word open = bits & ~settled_[u - slabs_.b0];
+          if (u >= b.lo && u < b.hi) {
+            const Word open = bits & ~settled_[b.store + (u - b.lo)];
             if (!open) return;
             if (!into[axes]) into[axes] = &me.class_list(key.after(axes));
             me.dedup[axes].add(*into[axes], u, open, me.epoch);
-          } else {
-            (u < b0 ? me.out_low : me.out_high).push_back({u, bits, key.after(axes)});
+            return;
           }
+          const int to = u < b.lo ? j - 1 : j + 1;
+          const Block& nb = slabs_.blocks[to];
+          const ClassEntry e{u, bits, key.after(axes)};
+          if (nb.rank == slabs_.rank)
+            me.out_local[nb.thread].push_back(e);
+          else
+            (to < j ? me.out_down : me.out_up).push_back(e);
         });
   }
 
   void file(Thread& me, const ClassEntry& e) {
-    const Word open = e.bits & ~settled_[e.tile - slabs_.b0];
+    const Block& b = slabs_.of_tile(e.tile);
+    const Word open = e.bits & ~settled_[b.store + (e.tile - b.lo)];
     if (open) me.class_list(e.key).push_back({e.tile, open});
   }
 
@@ -424,11 +432,11 @@ class CostClassDijkstra {
           inside = inside && y[a] >= 0 && y[a] < layout_.extent();
         }
         if (!inside) continue;
-        const int z = layout_.layer_of(std::span<const int>(y, D));
-        if (z < slabs_.z0 || z >= slabs_.z1) continue;
+        if (!slabs_.holds_layer(layout_.layer_of(std::span<const int>(y, D)))) continue;
         const std::uint64_t tile = layout_.tile_of(std::span<const int>(y, D));
+        const Block& b = slabs_.of_tile(tile);
         const std::uint64_t stored =
-            keys_[(tile - slabs_.b0) * 64 + layout_.bit_of(std::span<const int>(y, D))];
+            keys_[(b.store + (tile - b.lo)) * 64 + layout_.bit_of(std::span<const int>(y, D))];
         if (stored == 0) continue;
         ClassKey before;
         before.ones = static_cast<std::int32_t>((stored - 1) & 0xFFFF);
@@ -464,11 +472,12 @@ class CostClassDijkstra {
   const TileLayout& layout_;
   const FreeWindows& windows_;
   const Kernel& kernel_;
-  const Slabs& slabs_;
+  const SlabMap& slabs_;
   std::uint64_t free_states_ = 0;
   std::array<std::int64_t, kMaxDims> stride_{};
   ZeroedWords settled_, keys_;
   std::vector<Thread> threads_;
+  std::vector<std::vector<ClassEntry>> inbox_;  // per thread: what the neighbouring ranks sent it
   std::uint64_t goal_tile_ = 0;
   Word goal_bit_ = 0;
 };

@@ -58,7 +58,7 @@ struct TableKernel {
 template <int D, int K, class Kernel>
 Result run_engine(const GogField& field, const Query& q, SlabTransport& tr,
                   const TileLayout& layout, const FreeWindows& windows, const Kernel& kernel,
-                  const detail::Slabs& slabs) {
+                  const detail::SlabMap& slabs) {
   if (q.algorithm == Algorithm::bfs) {
     detail::LevelBfs<D, K, Kernel> engine(field, q, tr, layout, windows, kernel, slabs);
     return engine.run();
@@ -71,8 +71,8 @@ template <int D, int K>
 Result run_shape(const GogField& field, const Query& q, SlabTransport& tr) {
   const TileLayout layout(D, field.extent(), K);
   const FreeWindows windows(field, layout, max_word_steps(q, D));
-  const detail::Slabs slabs =
-      detail::plan_slabs(field, layout, tr.rank(), tr.ranks(), std::max(1, q.threads));
+  const detail::SlabMap slabs = detail::plan_slabs(field, layout, tr.rank(), tr.ranks(),
+                                                   std::max(1, q.threads), q.block_layers);
   Result r;
   if constexpr (D > kMaxSeedKernelDims) {
     // Beyond 8D the seed rule runs from the move table: the unrolled kernel's code grows with
@@ -95,7 +95,9 @@ Result run_shape(const GogField& field, const Query& q, SlabTransport& tr) {
   f.tiles = layout.tile_count();
   f.threads = slabs.threads;
   f.ranks = tr.ranks();
-  f.slab_layers = slabs.rank_layers;
+  f.rank_layers = slabs.rank_layers;
+  f.block_layers = slabs.block_layers;
+  f.blocks = static_cast<int>(slabs.blocks.size());
   f.table_bytes = windows.bytes();
   // Every window mask of the table answers 64 validity questions of the field, once.
   r.counters.collision_checks = windows.bytes() / sizeof(Word) * 64;
@@ -129,14 +131,12 @@ Result run_dims(const GogField& field, const Query& q, SlabTransport& tr, int k)
 std::uint64_t planned_bytes(const GogField& field, const Query& q, int ranks) {
   const int dims = field.dims();
   const TileLayout layout(dims, field.extent(), in_tile_axes(field, q));
-  // The largest slab: slabs are balanced by free states, so a slab may hold more layers than
-  // the mean; take the plan itself.
-  const std::vector<int> bounds =
-      balanced_slabs(free_states_per_layer(field, layout), std::max(1, ranks));
-  int widest = 0;
-  for (std::size_t r = 0; r + 1 < bounds.size(); ++r)
-    widest = std::max(widest, bounds[r + 1] - bounds[r]);
-  const std::uint64_t tiles = static_cast<std::uint64_t>(widest) * layout.layer_tiles();
+  // The rank holding the most tiles under the plan the run will use.
+  std::uint64_t tiles = 0;
+  for (int r = 0; r < std::max(1, ranks); ++r)
+    tiles = std::max(tiles, detail::plan_slabs(field, layout, r, std::max(1, ranks),
+                                               std::max(1, q.threads), q.block_layers)
+                                .store_tiles);
   std::uint64_t bytes =
       FreeWindows::table_bytes(layout, field.threshold(), max_word_steps(q, dims));
   if (q.algorithm == Algorithm::bfs) {

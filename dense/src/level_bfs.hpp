@@ -1,14 +1,14 @@
 #pragma once
 // Level-synchronous BFS on the dense lattice (dense_search.hpp describes the scheme).
 //
-// Per level, every thread expands its frontier entries (tiles of its sub-slab with bits of the
-// current level): targets in its own tiles are applied at once (bits not yet reached get the
-// next level's code; the first new bits of a tile put it on the next frontier, with the tile's
-// reached bits before the level, so the next level's frontier word is "reached now, not then"),
-// targets in a neighbour's tiles go to an outbox. After a barrier the master thread swaps the
-// rank's boundary outboxes with the neighbouring ranks; after another, each thread applies what
-// its neighbours (threads and ranks) sent it. One reduction per level decides: goal reached,
-// nothing left (no_path), or a stop.
+// Per level, every thread expands its frontier entries (tiles of its blocks with bits of the
+// current level): targets in the entry's own block are applied at once (bits not yet reached
+// get the next level's code; the first new bits of a tile put it on the next frontier, with the
+// tile's reached bits before the level, so the next level's frontier word is "reached now, not
+// then"), targets in the next block either side go to an outbox for its owner. After a barrier
+// the master thread swaps the rank's outboxes with the neighbouring ranks; after another, each
+// thread applies what the other threads and ranks sent it. One reduction per level decides:
+// goal reached, nothing left (no_path), or a stop.
 #include <limits>
 
 #include "engine_common.hpp"
@@ -21,7 +21,7 @@ template <int D, int K, class Kernel>
 class LevelBfs {
  public:
   LevelBfs(const GogField& field, const Query& q, SlabTransport& tr, const TileLayout& layout,
-           const FreeWindows& windows, const Kernel& kernel, const Slabs& slabs)
+           const FreeWindows& windows, const Kernel& kernel, const SlabMap& slabs)
       : field_(field),
         q_(q),
         tr_(tr),
@@ -35,31 +35,30 @@ class LevelBfs {
     free_states_ = static_cast<std::uint64_t>(free + 0.5);
   }
 
-  // Bytes of the store and marks for a slab of `tiles` tiles.
+  // Bytes of the store and marks for `tiles` tiles.
   static std::uint64_t store_bytes(std::uint64_t tiles) { return tiles * 16 + tiles / 8 + 64; }
 
   Result run() {
     Result res;
     Stopwatch clock;
-    const std::uint64_t tiles = slabs_.b1 - slabs_.b0;
-    codes_ = ZeroedWords(2 * tiles);
-    threads_.resize(slabs_.threads);
-    for (int t = 0; t < slabs_.threads; ++t) {
-      Thread& th = threads_[t];
-      th.b0 = slabs_.thread_tiles[t];
-      th.b1 = slabs_.thread_tiles[t + 1];
-      th.marks = ZeroedWords((th.b1 - th.b0 + 63) / 64);
+    const int T = slabs_.threads;
+    codes_ = ZeroedWords(2 * slabs_.store_tiles);
+    threads_.resize(T);
+    for (int t = 0; t < T; ++t) {
+      threads_[t].marks = ZeroedWords((slabs_.thread_tiles[t] + 63) / 64);
+      threads_[t].out_local.resize(T);
     }
-    start_tile_ = layout_.tile_of(q_.start);
+    inbox_.resize(T);
     goal_tile_ = layout_.tile_of(q_.goal);
-    start_bit_ = Word{1} << layout_.bit_of(q_.start);
     goal_bit_ = Word{1} << layout_.bit_of(q_.goal);
+    const std::uint64_t start_tile = layout_.tile_of(q_.start);
     const bool trivial = q_.start == q_.goal;
-    if (!slabs_.empty() && owns(start_tile_)) {
-      set_code(start_tile_, start_bit_, 0);
-      Thread& th = threads_[thread_of(start_tile_)];
-      mark(th, start_tile_);
-      th.cur.push_back({start_tile_, 0});
+    if (slabs_.of_tile(start_tile).rank == slabs_.rank) {
+      const Block& b = slabs_.of_tile(start_tile);
+      *code_words(b, start_tile) |= Word{1} << layout_.bit_of(q_.start);  // level 0: code 1
+      Thread& th = threads_[b.thread];
+      mark(th, b, start_tile);
+      th.cur.push_back({start_tile, 0});
     }
     const std::uint64_t fixed = codes_.bytes() + windows_.bytes() + marks_bytes();
 
@@ -69,21 +68,22 @@ class LevelBfs {
     Status status = Status::no_path;
     bool solved = trivial;
     bool done = trivial;
-    std::vector<std::byte> in_low_bytes, in_high_bytes;
-    std::vector<Entry> in_low, in_high;
+    std::vector<std::byte> from_below, from_above;
+    std::vector<Entry> down, up, received;
     const std::uint64_t budget = q_.memory_budget;
     std::uint64_t list_peak = 0;
 
-#pragma omp parallel num_threads(slabs_.threads) if (slabs_.threads > 1)
+#pragma omp parallel num_threads(T) if (T > 1)
     {
       const int id = omp_get_thread_num();
       Thread& me = threads_[id];
       while (!done) {
         // The frontier's words: reached now, not before the level that reached them.
         for (Entry& e : me.cur) {
-          const Word* c = code_words(e.tile);
+          const Block& b = slabs_.of_tile(e.tile);
+          const Word* c = code_words(b, e.tile);
           e.bits = (c[0] | c[1]) & ~e.bits;
-          unmark(me, e.tile);
+          unmark(me, b, e.tile);
         }
         const int next_code = static_cast<int>((level + 1) % 3) + 1;
         const Word c0 = next_code & 1 ? ~Word{0} : 0, c1 = next_code & 2 ? ~Word{0} : 0;
@@ -92,38 +92,40 @@ class LevelBfs {
           if ((++n & 1023) == 0 && poll_stop(me)) break;
           expand(me, e, c0, c1);
         }
-        if (budget && list_bytes(me) * slabs_.threads + fixed > budget)
-          me.stop = std::max(me.stop, 2);
+        if (budget && list_bytes(me) * T + fixed > budget) me.stop = std::max(me.stop, 2);
 #pragma omp barrier
 #pragma omp master
         {
-          const Thread& lo = threads_.front();
-          const Thread& hi = threads_.back();
-          tr_.exchange(slabs_.below, as_bytes_of(lo.out_low), slabs_.above,
-                       as_bytes_of(hi.out_high), in_low_bytes, in_high_bytes);
-          from_bytes(in_low_bytes, in_low);
-          from_bytes(in_high_bytes, in_high);
+          down.clear();
+          up.clear();
+          for (const Thread& t : threads_) {
+            down.insert(down.end(), t.out_down.begin(), t.out_down.end());
+            up.insert(up.end(), t.out_up.begin(), t.out_up.end());
+          }
+          tr_.exchange(slabs_.below, as_bytes_of(down), slabs_.above, as_bytes_of(up), from_below,
+                       from_above);
+          for (auto& box : inbox_) box.clear();
+          for (const std::vector<std::byte>* bytes : {&from_below, &from_above}) {
+            from_bytes(*bytes, received);
+            for (const Entry& e : received) inbox_[slabs_.of_tile(e.tile).thread].push_back(e);
+          }
         }
 #pragma omp barrier
-        if (id > 0)
-          for (const Entry& e : threads_[id - 1].out_high) apply(me, e.tile, e.bits, c0, c1);
-        if (id + 1 < slabs_.threads)
-          for (const Entry& e : threads_[id + 1].out_low) apply(me, e.tile, e.bits, c0, c1);
-        if (id == 0)
-          for (const Entry& e : in_low) apply(me, e.tile, e.bits, c0, c1);
-        if (id + 1 == slabs_.threads)
-          for (const Entry& e : in_high) apply(me, e.tile, e.bits, c0, c1);
+        for (const Thread& t : threads_)
+          for (const Entry& e : t.out_local[id])
+            apply(me, slabs_.of_tile(e.tile), e.tile, e.bits, c0, c1);
+        for (const Entry& e : inbox_[id]) apply(me, slabs_.of_tile(e.tile), e.tile, e.bits, c0, c1);
 #pragma omp barrier
 #pragma omp master
         {
           // One reduction: new states, next frontier entries, goal reached, stop.
-          std::uint64_t sums[2] = {0, 0};
-          std::uint64_t maxes[2] = {0, 0};
-          std::uint64_t lists = 0;
           if (q_.stop.can_stop())
             if (const auto s = q_.stop.check())
               threads_.front().stop =
                   std::max(threads_.front().stop, *s == Status::cancelled ? 3 : 1);
+          std::uint64_t sums[2] = {0, 0};
+          std::uint64_t maxes[2] = {0, 0};
+          std::uint64_t lists = 0;
           for (const Thread& t : threads_) {
             sums[0] += t.fresh;
             sums[1] += t.next.size();
@@ -152,8 +154,9 @@ class LevelBfs {
           progress.update("level", static_cast<double>(level), reached_total);
         }
 #pragma omp barrier
-        me.out_low.clear();
-        me.out_high.clear();
+        me.out_down.clear();
+        me.out_up.clear();
+        for (auto& box : me.out_local) box.clear();
         me.fresh = 0;
         std::swap(me.cur, me.next);
         me.next.clear();
@@ -161,7 +164,7 @@ class LevelBfs {
     }
 
     Counters& k = res.counters;
-    std::uint64_t local[3] = {0, 0, 0};
+    std::uint64_t local[2] = {0, 0};
     for (const Thread& t : threads_) {
       local[0] += t.expanded;
       local[1] += t.generated;
@@ -196,40 +199,27 @@ class LevelBfs {
 
  private:
   struct Thread {
-    std::vector<Entry> cur, next, out_low, out_high;
-    std::uint64_t b0 = 0, b1 = 0;
+    std::vector<Entry> cur, next;
+    std::vector<Entry> out_down, out_up;        // to the ranks below and above
+    std::vector<std::vector<Entry>> out_local;  // to this rank's threads
     ZeroedWords marks;
     std::uint64_t expanded = 0, generated = 0, fresh = 0;
     bool goal_hit = false;
     int stop = 0;  // 1 timeout, 2 budget, 3 cancelled: the highest wins
   };
 
-  bool owns(std::uint64_t tile) const {
-    return tile >= slabs_.b0 && tile < slabs_.b1;
+  Word* code_words(const Block& b, std::uint64_t tile) {
+    return codes_.data() + 2 * (b.store + (tile - b.lo));
   }
-  int thread_of(std::uint64_t tile) const {
-    int t = 0;
-    while (tile >= slabs_.thread_tiles[t + 1]) ++t;
-    return t;
+  const Word* code_words(const Block& b, std::uint64_t tile) const {
+    return codes_.data() + 2 * (b.store + (tile - b.lo));
   }
-  Word* code_words(std::uint64_t tile) {
-    return codes_.data() + 2 * (tile - slabs_.b0);
-  }
-  const Word* code_words(std::uint64_t tile) const {
-    return codes_.data() + 2 * (tile - slabs_.b0);
-  }
-  void set_code(std::uint64_t tile, Word bits, std::uint64_t level) {
-    const int code = static_cast<int>(level % 3) + 1;
-    Word* c = code_words(tile);
-    if (code & 1) c[0] |= bits;
-    if (code & 2) c[1] |= bits;
-  }
-  static void mark(Thread& t, std::uint64_t tile) {
-    const std::uint64_t i = tile - t.b0;
+  static void mark(Thread& t, const Block& b, std::uint64_t tile) {
+    const std::uint64_t i = b.mark + (tile - b.lo);
     t.marks[i >> 6] |= Word{1} << (i & 63);
   }
-  static void unmark(Thread& t, std::uint64_t tile) {
-    const std::uint64_t i = tile - t.b0;
+  static void unmark(Thread& t, const Block& b, std::uint64_t tile) {
+    const std::uint64_t i = b.mark + (tile - b.lo);
     t.marks[i >> 6] &= ~(Word{1} << (i & 63));
   }
   std::uint64_t marks_bytes() const {
@@ -238,8 +228,10 @@ class LevelBfs {
     return b;
   }
   static std::uint64_t list_bytes(const Thread& t) {
-    return (t.cur.capacity() + t.next.capacity() + t.out_low.capacity() + t.out_high.capacity()) *
-           sizeof(Entry);
+    std::size_t n =
+        t.cur.capacity() + t.next.capacity() + t.out_down.capacity() + t.out_up.capacity();
+    for (const auto& box : t.out_local) n += box.capacity();
+    return n * sizeof(Entry);
   }
 
   bool poll_stop(Thread& me) const {
@@ -251,13 +243,14 @@ class LevelBfs {
     return false;
   }
 
-  [[gnu::always_inline]] inline void apply(Thread& me, std::uint64_t u, Word bits, Word c0,
-                                           Word c1) {
-    Word* c = code_words(u);
+  // Bits reaching tile u of block b, which this thread owns.
+  [[gnu::always_inline]] inline void apply(Thread& me, const Block& b, std::uint64_t u, Word bits,
+                                           Word c0, Word c1) {
+    Word* c = code_words(b, u);
     const Word old = c[0] | c[1];
     const Word fresh = bits & ~old;
     if (!fresh) return;
-    const std::uint64_t i = u - me.b0;
+    const std::uint64_t i = b.mark + (u - b.lo);
     Word& mk = me.marks[i >> 6];
     const Word mb = Word{1} << (i & 63);
     if (!(mk & mb)) {
@@ -276,16 +269,19 @@ class LevelBfs {
     FreeWindows::At at;
     windows_.locate(t, at);
     me.expanded += static_cast<std::uint64_t>(std::popcount(e.bits));
-    const std::uint64_t b0 = me.b0, b1 = me.b1;
+    const int j = slabs_.layer_block[t[D - 1]];
+    const Block& b = slabs_.blocks[j];
     me.generated += kernel_.template expand<false>(
         e.bits, at, windows_.stride(), stride_.data(), [&](std::int64_t delta, Word bits, int) {
           const std::uint64_t u = e.tile + static_cast<std::uint64_t>(delta);
-          if (u >= b0 && u < b1)
-            apply(me, u, bits, c0, c1);
-          else if (u < b0)
-            me.out_low.push_back({u, bits});
+          if (u >= b.lo && u < b.hi) return apply(me, b, u, bits, c0, c1);
+          // The next block down or up (a move crosses one layer at most).
+          const int to = u < b.lo ? j - 1 : j + 1;
+          const Block& nb = slabs_.blocks[to];
+          if (nb.rank == slabs_.rank)
+            me.out_local[nb.thread].push_back({u, bits});
           else
-            me.out_high.push_back({u, bits});
+            (to < j ? me.out_down : me.out_up).push_back({u, bits});
         });
   }
 
@@ -306,7 +302,7 @@ class LevelBfs {
   int code_at(const int* c) const {
     const std::uint64_t tile = layout_.tile_of(std::span<const int>(c, D));
     const int bit = layout_.bit_of(std::span<const int>(c, D));
-    const Word* w = code_words(tile);
+    const Word* w = code_words(slabs_.of_tile(tile), tile);
     return static_cast<int>((w[0] >> bit) & 1) | static_cast<int>(((w[1] >> bit) & 1) << 1);
   }
 
@@ -328,9 +324,7 @@ class LevelBfs {
           y[a] = x[a] - offsets[j][a];
           inside = inside && y[a] >= 0 && y[a] < layout_.extent();
         }
-        if (!inside) continue;
-        const int z = layout_.layer_of(std::span<const int>(y, D));
-        if (z < slabs_.z0 || z >= slabs_.z1) continue;
+        if (!inside || !slabs_.holds_layer(layout_.layer_of(std::span<const int>(y, D)))) continue;
         if (code_at(y) != want || !legal_move(field_, y, offsets[j])) continue;
         best = static_cast<double>(j);
         break;
@@ -351,13 +345,14 @@ class LevelBfs {
   const TileLayout& layout_;
   const FreeWindows& windows_;
   const Kernel& kernel_;
-  const Slabs& slabs_;
+  const SlabMap& slabs_;
   std::uint64_t free_states_ = 0;
   std::array<std::int64_t, kMaxDims> stride_{};
   ZeroedWords codes_;
   std::vector<Thread> threads_;
-  std::uint64_t start_tile_ = 0, goal_tile_ = 0;
-  Word start_bit_ = 0, goal_bit_ = 0;
+  std::vector<std::vector<Entry>> inbox_;  // per thread: what the neighbouring ranks sent it
+  std::uint64_t goal_tile_ = 0;
+  Word goal_bit_ = 0;
 };
 
 }  // namespace hpcplan::dense::detail

@@ -15,7 +15,11 @@ nlohmann::json distributed_json(const GridReport& report) {
   const int dims = report.problem.dims;
   nlohmann::json d;
   if (report.dense)
-    d["ownership"] = {{"dense_slabs", {{"axis", dims - 1}, {"layers", report.dense->slab_layers}}}};
+    d["ownership"] = {{"dense_slabs",
+                       {{"axis", dims - 1},
+                        {"block_layers", report.dense->block_layers},
+                        {"blocks", report.dense->blocks},
+                        {"rank_layers", report.dense->rank_layers}}}};
   else if (!r.prefix_cuts.empty())
     d["ownership"] = {
         {"prefix_cuts", {{"axes", partition::cut_axes(dims)}, {"at", r.prefix_cuts}}}};
@@ -83,7 +87,9 @@ nlohmann::json dense_json(const dense::Figures& f) {
   d["levels"] = f.levels;
   d["buckets"] = f.buckets;
   d["threads"] = f.threads;
-  d["slab_layers"] = f.slab_layers;
+  d["block_layers"] = f.block_layers;
+  d["blocks"] = f.blocks;
+  d["rank_layers"] = f.rank_layers;
   d["halo_messages"] = f.halo_messages;
   d["halo_bytes"] = f.halo_bytes;
   d["exchange_ms"] = f.exchange_ms;

@@ -8,9 +8,10 @@
 namespace hpcplan::mpi {
 namespace {
 
-// Tags of this exchange only, apart from the other transports' messages.
-constexpr int kSizeTag = 7101;
-constexpr int kDataTag = 7102;
+// Tags of this exchange only, apart from the other transports' messages, one per direction:
+// with two ranks the rank below is also the rank above, and the tag tells which buffer is which.
+constexpr int kSizeDown = 7101, kSizeUp = 7102;  // sizes sent to the rank below / above
+constexpr int kDataDown = 7103, kDataUp = 7104;
 
 int checked_count(std::size_t bytes) {
   if (bytes > static_cast<std::size_t>(INT_MAX))
@@ -30,10 +31,13 @@ void NeighbourExchange::exchange(int below, std::span<const std::byte> to_below,
   const int peer[2] = {below, above};
   MPI_Request req[4];
   int n = 0;
+  // side 0: the rank below (we send it "down", it sent us "up"); side 1: the rank above.
+  const int size_out[2] = {kSizeDown, kSizeUp}, size_in[2] = {kSizeUp, kSizeDown};
+  const int data_out[2] = {kDataDown, kDataUp}, data_in[2] = {kDataUp, kDataDown};
   for (int side = 0; side < 2; ++side) {
     if (peer[side] < 0) continue;
-    MPI_Irecv(&recv_size[side], 1, MPI_UINT64_T, peer[side], kSizeTag, comm, &req[n++]);
-    MPI_Isend(&send_size[side], 1, MPI_UINT64_T, peer[side], kSizeTag, comm, &req[n++]);
+    MPI_Irecv(&recv_size[side], 1, MPI_UINT64_T, peer[side], size_in[side], comm, &req[n++]);
+    MPI_Isend(&send_size[side], 1, MPI_UINT64_T, peer[side], size_out[side], comm, &req[n++]);
   }
   MPI_Waitall(n, req, MPI_STATUSES_IGNORE);
   from_below.resize(below >= 0 ? recv_size[0] : 0);
@@ -44,11 +48,11 @@ void NeighbourExchange::exchange(int below, std::span<const std::byte> to_below,
   for (int side = 0; side < 2; ++side) {
     if (peer[side] < 0) continue;
     if (recv_size[side] > 0)
-      MPI_Irecv(into[side]->data(), checked_count(recv_size[side]), MPI_BYTE, peer[side], kDataTag,
-                comm, &req[n++]);
+      MPI_Irecv(into[side]->data(), checked_count(recv_size[side]), MPI_BYTE, peer[side],
+                data_in[side], comm, &req[n++]);
     if (!out[side].empty()) {
-      MPI_Isend(out[side].data(), checked_count(out[side].size()), MPI_BYTE, peer[side], kDataTag,
-                comm, &req[n++]);
+      MPI_Isend(out[side].data(), checked_count(out[side].size()), MPI_BYTE, peer[side],
+                data_out[side], comm, &req[n++]);
       ++traffic_.messages_sent;
       traffic_.bytes_sent += out[side].size();
     }

@@ -43,7 +43,10 @@ struct Query {
   std::vector<int> start, goal;  // free lattice states
   Algorithm algorithm = Algorithm::bfs;
   Connectivity connectivity = Connectivity::seed_pairs;
-  int threads = 1;                  // OpenMP threads of this rank (>= 1)
+  int threads = 1;  // OpenMP threads of this rank (>= 1)
+  // Layers per block dealt round the ranks and threads; 0: one contiguous slab per rank and
+  // thread, balanced by free states; < 0: about 8 blocks per thread (the default).
+  int block_layers = -1;
   bool keep_path = false;           // Dijkstra: record classes and walk the path back
                                     // (BFS always walks it, for its cost, and returns it)
   std::uint64_t memory_budget = 0;  // bytes this rank may use; 0 = no limit
@@ -67,7 +70,9 @@ struct Figures {
   std::uint64_t buckets = 0;         // Dijkstra buckets (exchanges)
   int threads = 1;
   int ranks = 1;
-  std::vector<int> slab_layers;     // ranks + 1 layer bounds
+  int block_layers = 0;             // layers per dealt block; 0: contiguous slabs
+  int blocks = 1;                   // blocks of layers
+  std::vector<int> rank_layers;     // layers each rank holds
   std::uint64_t halo_messages = 0;  // summed over ranks
   std::uint64_t halo_bytes = 0;
   double exchange_ms = 0.0;            // the slowest rank's time in exchanges and reductions
