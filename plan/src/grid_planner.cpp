@@ -65,6 +65,7 @@ dense::Query dense_query(const GogField&, const GridProblem& problem, const Grid
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   q.threads = o.threads > 0 ? o.threads : std::max(1, cores / std::max(1, ranks_sharing_memory));
   q.keep_path = o.keep_path;
+  q.block_layers = o.contiguous_slabs ? 0 : o.slab_layers > 0 ? o.slab_layers : -1;
   q.memory_budget = dense_memory_budget(o, report);
   q.stop = Stop::after(o.time_limit_s, o.cancel);
   if (o.stop_when) q.stop.also_when(o.stop_when);
@@ -97,6 +98,9 @@ bool uses_dense_engine(const GogField& field, const GridSearchOptions& options,
       options.algorithm == GridAlgorithm::bfs ? dense::Algorithm::bfs : dense::Algorithm::dijkstra;
   q.connectivity = parse_connectivity(report.problem.connectivity);
   q.keep_path = options.keep_path;
+  q.block_layers = options.contiguous_slabs  ? 0
+                   : options.slab_layers > 0 ? options.slab_layers
+                                             : -1;
   return dense::planned_bytes(field, q, ranks) <= dense_memory_budget(options, report);
 }
 

@@ -25,8 +25,9 @@ const std::vector<GridEntry>& grid_entries() {
     const std::vector<std::string> worlds{"grid"};
     const std::vector<std::string> common{"heuristic", "connectivity", "max_states", "time_limit",
                                           "engine"};
-    const std::vector<std::string> exhaustive{"connectivity", "max_states", "time_limit",
-                                              "engine",       "threads",    "memory_budget"};
+    const std::vector<std::string> exhaustive{"connectivity", "max_states",      "time_limit",
+                                              "engine",       "threads",         "memory_budget",
+                                              "slab_layers",  "contiguous_slabs"};
     std::vector<std::string> weighted = common;
     weighted.insert(weighted.begin(), "weight");
     std::vector<std::string> with_jump_points = common;
@@ -155,6 +156,10 @@ void validate(const GridProblem& p, const GridSearchOptions& o) {
     throw InputError(
         "--engine dense runs --algo bfs and dijkstra (A* and weighted A* run on the "
         "sparse engine)");
+  if (o.slab_layers > 0 && o.contiguous_slabs)
+    throw InputError("--slab-layers and --contiguous-slabs choose different layouts: give one");
+  if (o.slab_layers < 0)
+    throw InputError("--slab-layers must be 0 (automatic) or a number of layers");
   if (o.threads < 0 || o.threads > 4096)
     throw InputError("--threads must be in [0, 4096], got " + std::to_string(o.threads));
 }

@@ -41,6 +41,12 @@ std::vector<ParamSpec> parameter_table() {
              "engine; auto: dense for bfs and dijkstra when the lattice fits the memory budget"),
       integer("threads", 0, 4096, "0",
               "dense engine: OpenMP threads per process (0: this process's share of the cores)"),
+      integer("slab_layers", 0, 65535, "0",
+              "dense engine: layers per block, blocks dealt round the ranks and threads (0: "
+              "about 8 blocks per thread)"),
+      flag("contiguous_slabs",
+           "dense engine: one slab per rank and thread, balanced by free states, instead of "
+           "dealt blocks"),
       integer("memory_budget", 0, 1.8e19, "0",
               "dense engine: bytes each process may use (0: what --max-states buys the sparse "
               "engine, by default half the available memory)"),

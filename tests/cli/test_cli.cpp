@@ -175,6 +175,53 @@ TEST(Cli, BadInputExitsTwoWithOneLine) {
   expect_bad_input("grid --dims 2 --owner-cuts 5 --owner-slabs 2", "--owner-cuts replaces");
 }
 
+// The dense engine from the command line: chosen for BFS and Dijkstra, its figures in the JSON,
+// the sparse engine's hops and costs, and its options refused clearly.
+TEST(Cli, DenseEngineRunsBfsAndDijkstra) {
+  for (const char* algo : {"bfs", "dijkstra"}) {
+    const std::string base = std::string("grid --dims 4 --extent 13 --json --path --algo ") + algo;
+    const CliRun a = run(base);
+    const CliRun d = run(base + " --engine dense --threads 2 --slab-layers 2");
+    const CliRun c = run(base + " --engine dense --contiguous-slabs");
+    const CliRun s = run(base + " --engine sparse");
+    for (const CliRun* r : {&a, &d, &c, &s}) ASSERT_EQ(r->code, 0) << r->err;
+    const auto ja = nlohmann::json::parse(a.out), jd = nlohmann::json::parse(d.out),
+               jc = nlohmann::json::parse(c.out), js = nlohmann::json::parse(s.out);
+    EXPECT_EQ(ja["engine"], "dense") << algo;  // auto: the lattice fits
+    EXPECT_EQ(js["engine"], "sparse") << algo;
+    EXPECT_FALSE(js.contains("dense"));
+    for (const auto* j : {&ja, &jd, &jc}) {
+      EXPECT_EQ((*j)["visited_map"], "dense_bitmap");
+      for (const char* key : {"tile", "tiles", "free_states", "reached", "bytes_per_rank",
+                              "bytes_total", "levels", "threads", "blocks", "block_layers"})
+        EXPECT_TRUE((*j)["dense"].contains(key)) << key;
+      EXPECT_EQ((*j)["hops"], js["hops"]) << algo;
+      EXPECT_EQ((*j)["path"].size(), (*j)["hops"].get<std::size_t>() + 1);
+      EXPECT_EQ((*j)["path"], ja["path"]) << algo << ": the same path whatever the layout";
+    }
+    EXPECT_EQ(jd["dense"]["block_layers"], 2);
+    EXPECT_EQ(jd["dense"]["threads"], 2);
+    EXPECT_EQ(jc["dense"]["block_layers"], 0);
+    if (std::string(algo) == "dijkstra") {
+      EXPECT_NEAR(ja["cost"], js["cost"], 1e-9);
+    }
+  }
+  expect_bad_input("grid --dims 2 --engine quantum", "--engine");
+  expect_bad_input("grid --dims 2 --engine dense", "--engine dense runs --algo bfs and dijkstra");
+  expect_bad_input("grid --dims 2 --algo bfs --slab-layers 2 --contiguous-slabs",
+                   "--contiguous-slabs");
+  // Over the budget: one line with the bytes needed and the budget, before anything runs.
+  expect_bad_input("grid --dims 5 --extent 100 --algo bfs --engine dense --memory-budget 1000000",
+                   "over the budget of 1 MB (1000000 bytes)");
+  // A start inside an obstacle is bad input for the dense engine too.
+  const hpcplan::GogField f(2, 100, {});
+  std::vector<int> blocked{0, 0};
+  for (int i = 0; f.is_free(blocked); ++i) blocked = {i % 100, i / 100};
+  expect_bad_input("grid --dims 2 --algo bfs --engine dense --start " + std::to_string(blocked[0]) +
+                       "," + std::to_string(blocked[1]),
+                   "inside an obstacle");
+}
+
 // The rank simulator's report: shares per split are consistent with the observed search.
 TEST(Cli, SimulateRanksReportsEverySplit) {
   const CliRun r =
@@ -269,6 +316,9 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
       {"grid --dims 2", "--sent-filter", "29"},
       {"grid --dims 2", "--simulate-ranks", "1048577"},
       {"grid --dims 2 --simulate-ranks 2", "--simulate-coarsen", "17"},
+      {"grid --dims 2 --algo bfs", "--threads", "4097"},
+      {"grid --dims 2 --algo bfs", "--memory-budget", "18446744073709551616"},
+      {"grid --dims 2 --algo bfs", "--slab-layers", "65536"},
       {"ompl", "--dims", "11"},
       {"ompl --dims 2", "--time", "3601"},
       {"ompl --dims 2", "--runs", "10001"},
@@ -315,7 +365,7 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
       ++tried;
     }
   }
-  EXPECT_EQ(tried, 53 * 10 + 53);
+  EXPECT_EQ(tried, 56 * 10 + 56);
 }
 
 }  // namespace

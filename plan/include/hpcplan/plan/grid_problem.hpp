@@ -59,6 +59,10 @@ struct GridSearchOptions {
   // in bytes (0: what max_states buys the sparse engine, max_states x bytes_per_state).
   int threads = 0;
   std::uint64_t memory_budget = 0;
+  // Its layout over ranks and threads: blocks of this many layers dealt round (0: about 8 per
+  // thread), or one contiguous slab per rank and thread balanced by free states.
+  int slab_layers = 0;
+  bool contiguous_slabs = false;
 };
 
 // Throws InputError for anything a user could have got wrong.
