@@ -82,7 +82,10 @@ class CostClassDijkstra {
     settled_ = ZeroedWords(slabs_.store_tiles);
     if (q_.keep_path) keys_ = ZeroedWords(slabs_.store_tiles * 64);
     threads_.resize(T);
-    for (Thread& t : threads_) t.out_local.resize(T);
+    for (int t = 0; t < T; ++t) {
+      threads_[t].out_local.resize(T);
+      threads_[t].id = t;
+    }
     inbox_.resize(T);
     const std::uint64_t start_tile = layout_.tile_of(q_.start);
     goal_tile_ = layout_.tile_of(q_.goal);
@@ -275,10 +278,11 @@ class CostClassDijkstra {
     }
   };
 
-  struct Thread {
+  struct alignas(64) Thread {  // a cache line apart: each thread writes its own counters
     std::map<ClassKey, std::vector<Entry>> pending;
     Dedup dedup[5];  // per move length
     std::uint32_t epoch = 0;
+    int id = 0;
     std::vector<ClassEntry> out_down, out_up;        // to the ranks below and above
     std::vector<std::vector<ClassEntry>> out_local;  // to this rank's threads
     std::vector<std::vector<Entry>> spare;           // emptied lists, reused for new classes
@@ -349,7 +353,8 @@ class CostClassDijkstra {
     windows_.locate(t, at);
     const int j = slabs_.layer_block[t[D - 1]];
     me.generated += kernel_.template expand<true>(
-        fresh, at, windows_.stride(), stride_.data(), [&](std::int64_t delta, Word bits, int axes) {
+        fresh, at, windows_.stride(), stride_.data(),
+        [&](std::int64_t delta, Word bits, int axes) __attribute__((always_inline)) {
           const std::uint64_t u = tile + static_cast<std::uint64_t>(delta);
           if (u >= b.lo && u < b.hi) {
             const Word open = bits & ~settled_[b.store + (u - b.lo)];
@@ -360,6 +365,14 @@ class CostClassDijkstra {
           }
           const int to = u < b.lo ? j - 1 : j + 1;
           const Block& nb = slabs_.blocks[to];
+          if (nb.rank == slabs_.rank && nb.thread == me.id) {
+            // This thread's too: straight into the class.
+            const Word open = bits & ~settled_[nb.store + (u - nb.lo)];
+            if (!open) return;
+            if (!into[axes]) into[axes] = &me.class_list(key.after(axes));
+            me.dedup[axes].add(*into[axes], u, open, me.epoch);
+            return;
+          }
           const ClassEntry e{u, bits, key.after(axes)};
           if (nb.rank == slabs_.rank)
             me.out_local[nb.thread].push_back(e);

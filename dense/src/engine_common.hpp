@@ -90,7 +90,7 @@ struct SlabMap {
 };
 
 // Blocks of about this many per worker when block_layers is left to the engine (< 0).
-inline constexpr int kBlocksPerWorker = 8;
+inline constexpr int kBlocksPerWorker = 4;
 
 inline SlabMap plan_slabs(const GogField& field, const TileLayout& layout, int rank, int ranks,
                           int threads, int block_layers) {
@@ -100,8 +100,10 @@ inline SlabMap plan_slabs(const GogField& field, const TileLayout& layout, int r
   s.layer_tiles = layout.layer_tiles();
   const int layers = layout.layers();
   const std::vector<double> weights = free_states_per_layer(field, layout);
-  if (block_layers < 0)
-    block_layers = std::max(1, layers / (kBlocksPerWorker * ranks * std::max(1, threads)));
+  if (block_layers < 0) {
+    const int workers = ranks * std::max(1, threads);
+    block_layers = workers == 1 ? layers : std::max(4, layers / (kBlocksPerWorker * workers));
+  }
   s.block_layers = block_layers;
   if (block_layers == 0) {
     const std::vector<int> rb = balanced_slabs(weights, ranks);

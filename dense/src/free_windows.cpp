@@ -40,7 +40,12 @@ std::uint64_t FreeWindows::table_bytes(const TileLayout& layout, int threshold,
 }
 
 FreeWindows::FreeWindows(const GogField& field, const TileLayout& layout, int max_word_steps)
-    : layout_(layout), threshold_(field.threshold()) {
+    : layout_(layout),
+      dims_(layout.dims()),
+      extent_(layout.extent()),
+      in_tile_axes_(layout.in_tile_axes()),
+      tiles1_(layout.in_tile_axes() == 2 ? layout.tiles(1) : 1),
+      threshold_(field.threshold()) {
   const Range r = tau_range(layout, threshold_, max_word_steps);
   out_of_box_ = r.out_of_box;
   tau_offset_ = -r.tau_min;
@@ -99,25 +104,6 @@ FreeWindows::FreeWindows(const GogField& field, const TileLayout& layout, int ma
         }
       }
     }
-}
-
-void FreeWindows::locate(const int* t, At& at) const {
-  const int k = layout_.in_tile_axes();
-  const int windows = kWindows;
-  const std::size_t pos =
-      k == 2 ? static_cast<std::size_t>(t[0] + 1) * (layout_.tiles(1) + 2) + (t[1] + 1)
-             : static_cast<std::size_t>(t[0] + 1);
-  at.row = table_.data() + pos * windows * range_ + tau_offset_;
-  int tau = threshold_;
-  const int dims = layout_.dims();
-  for (int b = k; b < dims; ++b) {
-    const int* lv = levels_[b].data() + 1;  // lv[c] for c in -1 .. extent
-    const int here = lv[t[b]];
-    tau -= here;
-    at.minus[b] = t[b] > 0 ? here - lv[t[b] - 1] : out_of_box_;
-    at.plus[b] = t[b] + 1 < layout_.extent() ? here - lv[t[b] + 1] : out_of_box_;
-  }
-  at.tau = tau;
 }
 
 }  // namespace hpcplan::dense

@@ -47,6 +47,7 @@ class LevelBfs {
     for (int t = 0; t < T; ++t) {
       threads_[t].marks = ZeroedWords((slabs_.thread_tiles[t] + 63) / 64);
       threads_[t].out_local.resize(T);
+      threads_[t].id = t;
     }
     inbox_.resize(T);
     goal_tile_ = layout_.tile_of(q_.goal);
@@ -198,11 +199,12 @@ class LevelBfs {
   }
 
  private:
-  struct Thread {
+  struct alignas(64) Thread {  // a cache line apart: each thread writes its own counters
     std::vector<Entry> cur, next;
     std::vector<Entry> out_down, out_up;        // to the ranks below and above
     std::vector<std::vector<Entry>> out_local;  // to this rank's threads
     ZeroedWords marks;
+    int id = 0;
     std::uint64_t expanded = 0, generated = 0, fresh = 0;
     bool goal_hit = false;
     int stop = 0;  // 1 timeout, 2 budget, 3 cancelled: the highest wins
@@ -210,6 +212,10 @@ class LevelBfs {
 
   Word* code_words(const Block& b, std::uint64_t tile) {
     return codes_.data() + 2 * (b.store + (tile - b.lo));
+  }
+  // The store's words of block b as if indexed by global tile (2 words a tile).
+  Word* block_codes(const Block& b) {
+    return codes_.data() + 2 * b.store - 2 * b.lo;
   }
   const Word* code_words(const Block& b, std::uint64_t tile) const {
     return codes_.data() + 2 * (b.store + (tile - b.lo));
@@ -246,7 +252,10 @@ class LevelBfs {
   // Bits reaching tile u of block b, which this thread owns.
   [[gnu::always_inline]] inline void apply(Thread& me, const Block& b, std::uint64_t u, Word bits,
                                            Word c0, Word c1) {
-    Word* c = code_words(b, u);
+    apply_at(me, b, block_codes(b) + 2 * u, u, bits, c0, c1);
+  }
+  [[gnu::always_inline]] inline void apply_at(Thread& me, const Block& b, Word* c, std::uint64_t u,
+                                              Word bits, Word c0, Word c1) {
     const Word old = c[0] | c[1];
     const Word fresh = bits & ~old;
     if (!fresh) return;
@@ -271,14 +280,20 @@ class LevelBfs {
     me.expanded += static_cast<std::uint64_t>(std::popcount(e.bits));
     const int j = slabs_.layer_block[t[D - 1]];
     const Block& b = slabs_.blocks[j];
+    Word* const base = block_codes(b) + 2 * e.tile;  // the source tile's words
+    const std::uint64_t rel = e.tile - b.lo, span = b.hi - b.lo;
     me.generated += kernel_.template expand<false>(
-        e.bits, at, windows_.stride(), stride_.data(), [&](std::int64_t delta, Word bits, int) {
+        e.bits, at, windows_.stride(),
+        stride_.data(), [&](std::int64_t delta, Word bits, int) __attribute__((always_inline)) {
           const std::uint64_t u = e.tile + static_cast<std::uint64_t>(delta);
-          if (u >= b.lo && u < b.hi) return apply(me, b, u, bits, c0, c1);
+          if (rel + static_cast<std::uint64_t>(delta) < span)  // inside the block (unsigned)
+            return apply_at(me, b, base + 2 * delta, u, bits, c0, c1);
           // The next block down or up (a move crosses one layer at most).
           const int to = u < b.lo ? j - 1 : j + 1;
           const Block& nb = slabs_.blocks[to];
-          if (nb.rank == slabs_.rank)
+          if (nb.rank == slabs_.rank && nb.thread == me.id)
+            apply(me, nb, u, bits, c0, c1);  // this thread's too: no one else writes it
+          else if (nb.rank == slabs_.rank)
             me.out_local[nb.thread].push_back({u, bits});
           else
             (to < j ? me.out_down : me.out_up).push_back({u, bits});

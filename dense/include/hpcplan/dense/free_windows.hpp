@@ -42,7 +42,21 @@ class FreeWindows {
     int tau;          // threshold minus the word axes' levels of this tile
     std::array<int, kMaxDims> minus{}, plus{};  // tau change of a step -1 / +1 along a word axis
   };
-  void locate(const int* tile_coords, At& at) const;
+  [[gnu::always_inline]] void locate(const int* t, At& at) const {
+    const int k = in_tile_axes_;
+    const std::size_t pos = k == 2 ? static_cast<std::size_t>(t[0] + 1) * (tiles1_ + 2) + (t[1] + 1)
+                                   : static_cast<std::size_t>(t[0] + 1);
+    at.row = table_.data() + pos * kWindows * range_ + tau_offset_;
+    int tau = threshold_;
+    for (int b = k; b < dims_; ++b) {
+      const int* lv = levels_[b].data() + 1;  // lv[c] for c in -1 .. extent
+      const int here = lv[t[b]];
+      tau -= here;
+      at.minus[b] = t[b] > 0 ? here - lv[t[b] - 1] : out_of_box_;
+      at.plus[b] = t[b] + 1 < extent_ ? here - lv[t[b] + 1] : out_of_box_;
+    }
+    at.tau = tau;
+  }
   int stride() const { return range_; }
   Word mask(const At& at, int window, int tau) const { return at.row[window * range_ + tau]; }
   // The free mask of the tile itself.
@@ -55,6 +69,7 @@ class FreeWindows {
 
  private:
   const TileLayout& layout_;
+  int dims_, extent_, in_tile_axes_, tiles1_;
   int threshold_;
   int out_of_box_;  // tau change of a step out of the box: drives every mask to zero
   int tau_offset_;  // table index of tau = 0

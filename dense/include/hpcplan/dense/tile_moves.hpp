@@ -66,9 +66,11 @@ struct SeedMoves {
   [[gnu::always_inline]] static inline std::uint64_t expand(Word f, const FreeWindows::At& at,
                                                             int stride, const std::int64_t* W,
                                                             Out&& out) {
-    const Word* row = at.row;
     const int tau = at.tau;
-    auto P = [row, stride](int w, int t) { return row[w * stride + t]; };
+    // The nine windows' rows of this tile, so a mask is one indexed load.
+    const Word* win[FreeWindows::kWindows];
+    for (int w = 0; w < FreeWindows::kWindows; ++w) win[w] = at.row + w * stride;
+    auto P = [&win](int w, int t) { return win[w][t]; };
     constexpr int kDiag = kSplit ? 2 : 1;
     std::uint64_t gen = 0;
     // Source-frame masks of the one-step neighbours along the in-tile axes.

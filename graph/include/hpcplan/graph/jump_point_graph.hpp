@@ -111,7 +111,10 @@ class JumpPointGraph {
 
   template <class Emit>
   void for_each_successor_after(const State& s, Move arrived, Emit&& emit) const {
-    const auto [x, y] = unpack(s);
+    // Plain ints, not a structured binding: the lambda below captures them, which clang
+    // before 16 refuses for bindings (the ThreadSanitizer stage builds with clang 14).
+    const std::array<int, 2> xy = unpack(s);
+    const int x = xy[0], y = xy[1];
     std::uint64_t checks = 0;
     auto run = [&](int dir) __attribute__((always_inline)) {
       const int dx = kDx[dir], dy = kDy[dir];

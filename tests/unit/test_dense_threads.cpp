@@ -1,0 +1,75 @@
+// The dense engine's OpenMP threads, for ThreadSanitizer (scripts/test.sh builds this file
+// with clang and LLVM's OpenMP runtime, whose Archer tool tells TSan about OpenMP's barriers):
+// several threads share one slab's store and hand each other outboxes between barriers, and a
+// stop requested from another thread ends the run. Every thread count must give the one-thread
+// answer, path and counts.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "hpcplan/dense/dense_search.hpp"
+
+namespace {
+
+using namespace hpcplan;
+
+dense::Query corner_query(const GogField& field, dense::Algorithm a, int threads) {
+  const int d = field.dims(), e = field.extent();
+  dense::Query q;
+  q.start.assign(d, 0);
+  q.goal.assign(d, e - 1);
+  for (long s = 0; !field.is_free(q.start); ++s) ++q.start[s % d];
+  for (long s = 0; !field.is_free(q.goal); ++s) --q.goal[s % d];
+  q.algorithm = a;
+  q.threads = threads;
+  q.keep_path = true;
+  return q;
+}
+
+TEST(DenseThreads, EveryThreadCountGivesTheOneThreadAnswer) {
+  for (const auto& [d, extent] : std::vector<std::pair<int, int>>{{2, 90}, {3, 24}, {4, 12}})
+    for (const dense::Algorithm a : {dense::Algorithm::bfs, dense::Algorithm::dijkstra}) {
+      GogParams gp;
+      gp.seed = 7 + d;
+      const GogField field(d, extent, gp);
+      dense::LocalTransport local;
+      const dense::Result one = dense::search(field, corner_query(field, a, 1), local);
+      ASSERT_EQ(one.status, Status::solved);
+      for (int threads : {2, 3, 4})
+        for (int block_layers : {-1, 0, 1}) {
+          dense::Query q = corner_query(field, a, threads);
+          q.block_layers = block_layers;
+          const dense::Result r = dense::search(field, q, local);
+          SCOPED_TRACE(::testing::Message()
+                       << d << "D threads " << threads << " blocks " << block_layers);
+          EXPECT_EQ(r.status, one.status);
+          EXPECT_EQ(r.cost, one.cost);
+          EXPECT_EQ(r.path, one.path);
+          EXPECT_EQ(r.counters.expanded, one.counters.expanded);
+          EXPECT_EQ(r.counters.generated, one.counters.generated);
+          EXPECT_GE(r.figures.threads, 1);
+        }
+    }
+}
+
+TEST(DenseThreads, AnotherThreadCancelsARun) {
+  GogParams gp;
+  const GogField field(5, 30, gp);
+  for (const dense::Algorithm a : {dense::Algorithm::bfs, dense::Algorithm::dijkstra}) {
+    std::stop_source source;
+    dense::Query q = corner_query(field, a, 2);
+    q.stop = Stop(source.get_token());
+    std::jthread canceller([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      source.request_stop();
+    });
+    dense::LocalTransport local;
+    const dense::Result r = dense::search(field, q, local);
+    // A run this size takes seconds under the sanitizer: it is stopped, not finished.
+    EXPECT_EQ(r.status, Status::cancelled);
+    EXPECT_TRUE(r.path.empty());
+  }
+}
+
+}  // namespace
