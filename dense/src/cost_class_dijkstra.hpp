@@ -106,115 +106,145 @@ class CostClassDijkstra {
     const std::uint64_t budget = q_.memory_budget;
     std::uint64_t list_peak = 0;
 
+    int team = T;
+    bool failed = false;
 #pragma omp parallel num_threads(T) if (T > 1)
     {
       const int id = omp_get_thread_num();
       Thread& me = threads_[id];
-      while (!done) {
-        std::size_t n = 0;
-        bool stopped = false;
-        while (!stopped && !me.pending.empty() && me.pending.begin()->first.value() < bucket + 1) {
-          auto node = me.pending.extract(me.pending.begin());
-          const ClassKey key = node.key();
-          std::vector<Entry>& list = node.mapped();
-          ++me.epoch;
-          const std::uint64_t settled_before = me.settled;
-          // Where this class's targets go, per move length (axes 1..4).
-          std::vector<Entry>* into[5] = {};
-          for (const Entry& e : list) {
-            if ((++n & 1023) == 0 && poll_stop(me)) {
-              stopped = true;
-              break;
+      if (omp_get_num_threads() != T) {
+#pragma omp master
+        team = omp_get_num_threads();
+      } else
+        while (!done) {
+          try {
+            std::size_t n = 0;
+            bool stopped = false;
+            while (!stopped && !me.pending.empty() &&
+                   me.pending.begin()->first.value() < bucket + 1) {
+              auto node = me.pending.extract(me.pending.begin());
+              const ClassKey key = node.key();
+              std::vector<Entry>& list = node.mapped();
+              ++me.epoch;
+              const std::uint64_t settled_before = me.settled;
+              // Where this class's targets go, per move length (axes 1..4).
+              std::vector<Entry>* into[5] = {};
+              for (const Entry& e : list) {
+                if ((++n & 1023) == 0 && poll_stop(me)) {
+                  stopped = true;
+                  break;
+                }
+                const Block& b = slabs_.of_tile(e.tile);
+                Word& s = settled_[b.store + (e.tile - b.lo)];
+                const Word fresh = e.bits & ~s;
+                if (!fresh) continue;
+                s |= fresh;
+                me.settled += static_cast<std::uint64_t>(std::popcount(fresh));
+                if (q_.keep_path) record(b, e.tile, fresh, key);
+                if (e.tile == goal_tile_ && (fresh & goal_bit_)) {
+                  me.goal_hit = true;
+                  me.goal_key = key;
+                }
+                expand(me, b, e.tile, fresh, key, into);
+              }
+              // Classes that settled a state, a set independent of ranks and threads (a class
+              // whose states all settled earlier elsewhere is not counted).
+              if (me.settled > settled_before) me.processed.push_back(key);
+              me.recycle(std::move(list));
             }
-            const Block& b = slabs_.of_tile(e.tile);
-            Word& s = settled_[b.store + (e.tile - b.lo)];
-            const Word fresh = e.bits & ~s;
-            if (!fresh) continue;
-            s |= fresh;
-            me.settled += static_cast<std::uint64_t>(std::popcount(fresh));
-            if (q_.keep_path) record(b, e.tile, fresh, key);
-            if (e.tile == goal_tile_ && (fresh & goal_bit_)) {
-              me.goal_hit = true;
-              me.goal_key = key;
-            }
-            expand(me, b, e.tile, fresh, key, into);
+            if (budget && list_bytes(me) * T + fixed > budget) me.stop = std::max(me.stop, 2);
+          } catch (...) {
+            caught(me);
           }
-          // Classes that settled a state, a set independent of ranks and threads (a class
-          // whose states all settled earlier elsewhere is not counted).
-          if (me.settled > settled_before) me.processed.push_back(key);
-          me.recycle(std::move(list));
-        }
-        if (budget && list_bytes(me) * T + fixed > budget) me.stop = std::max(me.stop, 2);
 #pragma omp barrier
 #pragma omp master
-        {
-          down.clear();
-          up.clear();
-          for (const Thread& t : threads_) {
-            down.insert(down.end(), t.out_down.begin(), t.out_down.end());
-            up.insert(up.end(), t.out_up.begin(), t.out_up.end());
+          try {
+            down.clear();
+            up.clear();
+            for (const Thread& t : threads_) {
+              down.insert(down.end(), t.out_down.begin(), t.out_down.end());
+              up.insert(up.end(), t.out_up.begin(), t.out_up.end());
+            }
+            tr_.exchange(slabs_.below, as_bytes_of(down), slabs_.above, as_bytes_of(up), from_below,
+                         from_above);
+            for (auto& box : inbox_) box.clear();
+            for (const std::vector<std::byte>* bytes : {&from_below, &from_above}) {
+              from_bytes(*bytes, received);
+              for (const ClassEntry& e : received)
+                inbox_[slabs_.of_tile(e.tile).thread].push_back(e);
+            }
+          } catch (...) {
+            caught(threads_.front());
           }
-          tr_.exchange(slabs_.below, as_bytes_of(down), slabs_.above, as_bytes_of(up), from_below,
-                       from_above);
-          for (auto& box : inbox_) box.clear();
-          for (const std::vector<std::byte>* bytes : {&from_below, &from_above}) {
-            from_bytes(*bytes, received);
-            for (const ClassEntry& e : received) inbox_[slabs_.of_tile(e.tile).thread].push_back(e);
-          }
-        }
 #pragma omp barrier
-        for (const Thread& t : threads_)
-          for (const ClassEntry& e : t.out_local[id]) file(me, e);
-        for (const ClassEntry& e : inbox_[id]) file(me, e);
+          try {
+            for (const Thread& t : threads_)
+              for (const ClassEntry& e : t.out_local[id]) file(me, e);
+            for (const ClassEntry& e : inbox_[id]) file(me, e);
+          } catch (...) {
+            caught(me);
+          }
 #pragma omp barrier
 #pragma omp master
-        {
-          std::uint64_t maxes[2] = {0, 0};
-          std::uint64_t sums[2] = {0, 0};
-          double next = std::numeric_limits<double>::infinity();
-          std::uint64_t lists = 0;
-          if (q_.stop.can_stop())
-            if (const auto s = q_.stop.check())
-              threads_.front().stop =
-                  std::max(threads_.front().stop, *s == Status::cancelled ? 3 : 1);
-          for (Thread& t : threads_) {
-            maxes[0] |= t.goal_hit ? 1 : 0;
-            maxes[1] = std::max<std::uint64_t>(maxes[1], t.stop);
-            sums[0] += t.settled_now();
-            sums[1] += t.pending_entries();
-            if (!t.pending.empty()) next = std::min(next, t.pending.begin()->first.value());
-            lists += list_bytes(t);
+          {
+            try {
+              std::uint64_t maxes[2] = {0, 0};
+              std::uint64_t sums[2] = {0, 0};
+              double next = std::numeric_limits<double>::infinity();
+              std::uint64_t lists = 0;
+              if (q_.stop.can_stop())
+                if (const auto s = q_.stop.check())
+                  threads_.front().stop =
+                      std::max(threads_.front().stop, *s == Status::cancelled ? 3 : 1);
+              for (Thread& t : threads_) {
+                maxes[0] |= t.goal_hit ? 1 : 0;
+                maxes[1] = std::max<std::uint64_t>(maxes[1], t.stop);
+                sums[0] += t.settled_now();
+                sums[1] += t.pending_entries();
+                if (!t.pending.empty()) next = std::min(next, t.pending.begin()->first.value());
+                lists += list_bytes(t);
+              }
+              list_peak = std::max(list_peak, lists);
+              tr_.max(maxes);
+              tr_.sum(sums);
+              tr_.min(std::span<double>(&next, 1));
+              ++buckets;
+              settled_total += sums[0];
+              peak_pending = std::max(peak_pending, sums[1]);
+              if (maxes[1] == kStopFailed) {
+                failed = true;
+                done = true;
+              } else if (maxes[0]) {
+                solved = true;
+                done = true;
+              } else if (maxes[1]) {
+                status = maxes[1] == 3   ? Status::cancelled
+                         : maxes[1] == 2 ? Status::budget_exceeded
+                                         : Status::timeout;
+                done = true;
+              } else if (!std::isfinite(next)) {
+                status = Status::no_path;
+                done = true;
+              } else {
+                bucket = std::floor(next);
+              }
+              progress.update("cost", bucket, settled_total);
+            } catch (...) {
+              caught(threads_.front());
+            }
+            if (threads_.front().error) {  // the reduction itself failed
+              failed = true;
+              done = true;
+            }
           }
-          list_peak = std::max(list_peak, lists);
-          tr_.max(maxes);
-          tr_.sum(sums);
-          tr_.min(std::span<double>(&next, 1));
-          ++buckets;
-          settled_total += sums[0];
-          peak_pending = std::max(peak_pending, sums[1]);
-          if (maxes[0]) {
-            solved = true;
-            done = true;
-          } else if (maxes[1]) {
-            status = maxes[1] == 3   ? Status::cancelled
-                     : maxes[1] == 2 ? Status::budget_exceeded
-                                     : Status::timeout;
-            done = true;
-          } else if (!std::isfinite(next)) {
-            status = Status::no_path;
-            done = true;
-          } else {
-            bucket = std::floor(next);
-          }
-          progress.update("cost", bucket, settled_total);
-        }
 #pragma omp barrier
-        me.out_down.clear();
-        me.out_up.clear();
-        for (auto& box : me.out_local) box.clear();
-      }
+          me.out_down.clear();
+          me.out_up.clear();
+          for (auto& box : me.out_local) box.clear();
+        }
     }
 
+    rethrow_failure(threads_, team, failed);
     Counters& k = res.counters;
     std::uint64_t local[2] = {0, 0};
     std::vector<ClassKey> classes;
@@ -262,23 +292,26 @@ class CostClassDijkstra {
   // tiles per target list; a new source class starts a new epoch.
   struct Dedup {
     static constexpr int kBits = 12;
-    std::vector<std::uint64_t> tile = std::vector<std::uint64_t>(std::size_t{1} << kBits);
-    std::vector<std::uint32_t> index = std::vector<std::uint32_t>(std::size_t{1} << kBits);
-    std::vector<std::uint32_t> epoch = std::vector<std::uint32_t>(std::size_t{1} << kBits, 0);
+    // One 16-byte slot per hash: a look-up touches one cache line, not three arrays.
+    struct Slot {
+      std::uint64_t tile = 0;
+      std::uint32_t index = 0, epoch = 0;
+    };
+    std::vector<Slot> slots = std::vector<Slot>(std::size_t{1} << kBits);
     void add(std::vector<Entry>& list, std::uint64_t u, Word bits, std::uint32_t now) {
-      const std::size_t h = (u * 0x9E3779B97F4A7C15ULL) >> (64 - kBits);
-      if (epoch[h] == now && tile[h] == u) {
-        list[index[h]].bits |= bits;
+      Slot& s = slots[(u * 0x9E3779B97F4A7C15ULL) >> (64 - kBits)];
+      if (s.epoch == now && s.tile == u) {
+        list[s.index].bits |= bits;
         return;
       }
-      tile[h] = u;
-      epoch[h] = now;
-      index[h] = static_cast<std::uint32_t>(list.size());
+      s = {u, static_cast<std::uint32_t>(list.size()), now};
       list.push_back({u, bits});
     }
   };
 
-  struct alignas(64) Thread {  // a cache line apart: each thread writes its own counters
+  struct alignas(64) Thread {
+    std::exception_ptr error;  // the first exception of this thread's work (guarded)  // a cache
+                               // line apart: each thread writes its own counters
     std::map<ClassKey, std::vector<Entry>> pending;
     Dedup dedup[5];  // per move length
     std::uint32_t epoch = 0;
@@ -290,7 +323,7 @@ class CostClassDijkstra {
     std::uint64_t settled = 0, generated = 0, reported = 0;
     bool goal_hit = false;
     ClassKey goal_key;
-    int stop = 0;
+    int stop = 0;  // 1 timeout, 2 budget, 3 cancelled, 4 failed: the highest wins
 
     std::uint64_t settled_now() {
       const std::uint64_t d = settled - reported;
@@ -341,10 +374,9 @@ class CostClassDijkstra {
     for (Word w = fresh; w; w &= w - 1) k[std::countr_zero(w)] = key.packed() + 1;
   }
 
-  // A target outside this thread's tiles goes to an outbox; inside, into its class's list
-  // unless already settled.
-  // A target in the source's block goes into its class's list unless already settled; one in
-  // the next block either side, to an outbox for that block's owner.
+  // A target in the source's block, or in the next block either side when this thread owns
+  // that one too, goes into its class's list unless already settled; any other, to an outbox
+  // for its block's owner.
   void expand(Thread& me, const Block& b, std::uint64_t tile, Word fresh, const ClassKey& key,
               std::vector<Entry>** into) {
     int t[kMaxDims];
@@ -401,7 +433,11 @@ class CostClassDijkstra {
   }
 
   // Classes processed anywhere (a class spanning several slabs is processed by each).
+  // The classes settled anywhere, counted once: each rank sends its own set (its threads'
+  // lists merged first, so the gather grows with ranks, not with ranks x threads).
   std::uint64_t distinct_classes(std::vector<ClassKey> mine) {
+    std::sort(mine.begin(), mine.end());
+    mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
     const auto all =
         tr_.allgather(std::as_bytes(std::span<const ClassKey>(mine.data(), mine.size())));
     std::vector<ClassKey> every(all.size() / sizeof(ClassKey));

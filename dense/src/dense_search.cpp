@@ -1,5 +1,9 @@
 #include "hpcplan/dense/dense_search.hpp"
 
+#include <omp.h>
+
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -130,6 +134,8 @@ Result run_dims(const GogField& field, const Query& q, SlabTransport& tr, int k)
 
 std::uint64_t planned_bytes(const GogField& field, const Query& q, int ranks) {
   const int dims = field.dims();
+  if (!TileLayout::fits(dims, field.extent(), in_tile_axes(field, q)))
+    return std::numeric_limits<std::uint64_t>::max();
   const TileLayout layout(dims, field.extent(), in_tile_axes(field, q));
   // The rank holding the most tiles under the plan the run will use.
   std::uint64_t tiles = 0;
@@ -149,7 +155,21 @@ std::uint64_t planned_bytes(const GogField& field, const Query& q, int ranks) {
   return bytes;
 }
 
-Result search(const GogField& field, const Query& q, SlabTransport& tr) {
+Result search(const GogField& field, const Query& asked, SlabTransport& tr) {
+  // Every rank must deal the same blocks to the same number of threads and refuse or accept
+  // together, while each knows only its own limits: all take the smallest thread count any
+  // rank can start (its OpenMP thread limit; one thread when called inside another parallel
+  // region without nesting) and the smallest budget.
+  Query q = asked;
+  int threads = std::min(std::max(1, q.threads), omp_get_thread_limit());
+  if (omp_in_parallel() && omp_get_active_level() >= omp_get_max_active_levels()) threads = 1;
+  double agreed[2] = {static_cast<double>(threads), q.memory_budget > 0
+                                                        ? static_cast<double>(q.memory_budget)
+                                                        : std::numeric_limits<double>::infinity()};
+  tr.min(agreed);
+  q.threads = static_cast<int>(agreed[0]);
+  q.memory_budget =
+      std::isfinite(agreed[1]) ? static_cast<std::uint64_t>(std::min(agreed[1], 1.8e19)) : 0;
   if (q.start.size() != static_cast<std::size_t>(field.dims()) ||
       q.goal.size() != static_cast<std::size_t>(field.dims()))
     throw std::logic_error("dense::search: start and goal need one coordinate per axis");
@@ -158,6 +178,9 @@ Result search(const GogField& field, const Query& q, SlabTransport& tr) {
   if (q.connectivity == Connectivity::full && field.dims() > kMaxFullConnectivityDims)
     throw std::logic_error("dense::search: full connectivity is limited to d <= 4");
   const std::uint64_t needed = planned_bytes(field, q, tr.ranks());
+  if (needed == std::numeric_limits<std::uint64_t>::max())
+    throw InputError("the lattice is too large for the dense engine (over 2^50 tiles of 64 " +
+                     std::string("states); use --engine sparse"));
   if (q.memory_budget > 0 && needed > q.memory_budget)
     throw InputError("the dense engine needs " + format_bytes(needed) + " per rank (" +
                      std::to_string(needed) + " bytes) for this lattice, over the budget of " +

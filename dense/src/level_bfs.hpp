@@ -74,96 +74,125 @@ class LevelBfs {
     const std::uint64_t budget = q_.memory_budget;
     std::uint64_t list_peak = 0;
 
+    int team = T;
+    bool failed = false;
 #pragma omp parallel num_threads(T) if (T > 1)
     {
       const int id = omp_get_thread_num();
       Thread& me = threads_[id];
-      while (!done) {
-        // The frontier's words: reached now, not before the level that reached them.
-        for (Entry& e : me.cur) {
-          const Block& b = slabs_.of_tile(e.tile);
-          const Word* c = code_words(b, e.tile);
-          e.bits = (c[0] | c[1]) & ~e.bits;
-          unmark(me, b, e.tile);
-        }
-        const int next_code = static_cast<int>((level + 1) % 3) + 1;
-        const Word c0 = next_code & 1 ? ~Word{0} : 0, c1 = next_code & 2 ? ~Word{0} : 0;
-        std::size_t n = 0;
-        for (const Entry& e : me.cur) {
-          if ((++n & 1023) == 0 && poll_stop(me)) break;
-          expand(me, e, c0, c1);
-        }
-        if (budget && list_bytes(me) * T + fixed > budget) me.stop = std::max(me.stop, 2);
+      if (omp_get_num_threads() != T) {
+#pragma omp master
+        team = omp_get_num_threads();
+      } else
+        while (!done) {
+          const int next_code = static_cast<int>((level + 1) % 3) + 1;
+          const Word c0 = next_code & 1 ? ~Word{0} : 0, c1 = next_code & 2 ? ~Word{0} : 0;
+          try {
+            // The frontier's words: reached now, not before the level that reached them.
+            for (Entry& e : me.cur) {
+              const Block& b = slabs_.of_tile(e.tile);
+              const Word* c = code_words(b, e.tile);
+              e.bits = (c[0] | c[1]) & ~e.bits;
+              unmark(me, b, e.tile);
+            }
+            std::size_t n = 0;
+            for (const Entry& e : me.cur) {
+              if ((++n & 1023) == 0 && poll_stop(me)) break;
+              expand(me, e, c0, c1);
+            }
+            if (budget && list_bytes(me) * T + fixed > budget) me.stop = std::max(me.stop, 2);
+          } catch (...) {
+            caught(me);
+          }
 #pragma omp barrier
 #pragma omp master
-        {
-          down.clear();
-          up.clear();
-          for (const Thread& t : threads_) {
-            down.insert(down.end(), t.out_down.begin(), t.out_down.end());
-            up.insert(up.end(), t.out_up.begin(), t.out_up.end());
+          try {
+            down.clear();
+            up.clear();
+            for (const Thread& t : threads_) {
+              down.insert(down.end(), t.out_down.begin(), t.out_down.end());
+              up.insert(up.end(), t.out_up.begin(), t.out_up.end());
+            }
+            tr_.exchange(slabs_.below, as_bytes_of(down), slabs_.above, as_bytes_of(up), from_below,
+                         from_above);
+            for (auto& box : inbox_) box.clear();
+            for (const std::vector<std::byte>* bytes : {&from_below, &from_above}) {
+              from_bytes(*bytes, received);
+              for (const Entry& e : received) inbox_[slabs_.of_tile(e.tile).thread].push_back(e);
+            }
+          } catch (...) {
+            caught(threads_.front());
           }
-          tr_.exchange(slabs_.below, as_bytes_of(down), slabs_.above, as_bytes_of(up), from_below,
-                       from_above);
-          for (auto& box : inbox_) box.clear();
-          for (const std::vector<std::byte>* bytes : {&from_below, &from_above}) {
-            from_bytes(*bytes, received);
-            for (const Entry& e : received) inbox_[slabs_.of_tile(e.tile).thread].push_back(e);
-          }
-        }
 #pragma omp barrier
-        for (const Thread& t : threads_)
-          for (const Entry& e : t.out_local[id])
-            apply(me, slabs_.of_tile(e.tile), e.tile, e.bits, c0, c1);
-        for (const Entry& e : inbox_[id]) apply(me, slabs_.of_tile(e.tile), e.tile, e.bits, c0, c1);
+          try {
+            for (const Thread& t : threads_)
+              for (const Entry& e : t.out_local[id])
+                apply(me, slabs_.of_tile(e.tile), e.tile, e.bits, c0, c1);
+            for (const Entry& e : inbox_[id])
+              apply(me, slabs_.of_tile(e.tile), e.tile, e.bits, c0, c1);
+          } catch (...) {
+            caught(me);
+          }
 #pragma omp barrier
 #pragma omp master
-        {
-          // One reduction: new states, next frontier entries, goal reached, stop.
-          if (q_.stop.can_stop())
-            if (const auto s = q_.stop.check())
-              threads_.front().stop =
-                  std::max(threads_.front().stop, *s == Status::cancelled ? 3 : 1);
-          std::uint64_t sums[2] = {0, 0};
-          std::uint64_t maxes[2] = {0, 0};
-          std::uint64_t lists = 0;
-          for (const Thread& t : threads_) {
-            sums[0] += t.fresh;
-            sums[1] += t.next.size();
-            maxes[0] |= t.goal_hit ? 1 : 0;
-            maxes[1] = std::max<std::uint64_t>(maxes[1], t.stop);
-            lists += list_bytes(t);
+          {
+            try {
+              // One reduction: new states, next frontier entries, goal reached, stop.
+              if (q_.stop.can_stop())
+                if (const auto s = q_.stop.check())
+                  threads_.front().stop =
+                      std::max(threads_.front().stop, *s == Status::cancelled ? 3 : 1);
+              std::uint64_t sums[2] = {0, 0};
+              std::uint64_t maxes[2] = {0, 0};
+              std::uint64_t lists = 0;
+              for (const Thread& t : threads_) {
+                sums[0] += t.fresh;
+                sums[1] += t.next.size();
+                maxes[0] |= t.goal_hit ? 1 : 0;
+                maxes[1] = std::max<std::uint64_t>(maxes[1], t.stop);
+                lists += list_bytes(t);
+              }
+              list_peak = std::max(list_peak, lists);
+              tr_.sum(sums);
+              tr_.max(maxes);
+              ++level;
+              reached_total += sums[0];
+              peak_level = std::max(peak_level, sums[0]);
+              if (maxes[1] == kStopFailed) {
+                failed = true;
+                done = true;
+              } else if (maxes[0]) {
+                solved = true;
+                done = true;
+              } else if (maxes[1]) {
+                status = maxes[1] == 3   ? Status::cancelled
+                         : maxes[1] == 2 ? Status::budget_exceeded
+                                         : Status::timeout;
+                done = true;
+              } else if (sums[1] == 0) {
+                status = Status::no_path;
+                done = true;
+              }
+              progress.update("level", static_cast<double>(level), reached_total);
+            } catch (...) {
+              caught(threads_.front());
+            }
+            if (threads_.front().error) {  // the reduction itself failed
+              failed = true;
+              done = true;
+            }
           }
-          list_peak = std::max(list_peak, lists);
-          tr_.sum(sums);
-          tr_.max(maxes);
-          ++level;
-          reached_total += sums[0];
-          peak_level = std::max(peak_level, sums[0]);
-          if (maxes[0]) {
-            solved = true;
-            done = true;
-          } else if (maxes[1]) {
-            status = maxes[1] == 3   ? Status::cancelled
-                     : maxes[1] == 2 ? Status::budget_exceeded
-                                     : Status::timeout;
-            done = true;
-          } else if (sums[1] == 0) {
-            status = Status::no_path;
-            done = true;
-          }
-          progress.update("level", static_cast<double>(level), reached_total);
-        }
 #pragma omp barrier
-        me.out_down.clear();
-        me.out_up.clear();
-        for (auto& box : me.out_local) box.clear();
-        me.fresh = 0;
-        std::swap(me.cur, me.next);
-        me.next.clear();
-      }
+          me.out_down.clear();
+          me.out_up.clear();
+          for (auto& box : me.out_local) box.clear();
+          me.fresh = 0;
+          std::swap(me.cur, me.next);
+          me.next.clear();
+        }
     }
 
+    rethrow_failure(threads_, team, failed);
     Counters& k = res.counters;
     std::uint64_t local[2] = {0, 0};
     for (const Thread& t : threads_) {
@@ -199,7 +228,9 @@ class LevelBfs {
   }
 
  private:
-  struct alignas(64) Thread {  // a cache line apart: each thread writes its own counters
+  struct alignas(64) Thread {
+    std::exception_ptr error;  // the first exception of this thread's work (guarded)  // a cache
+                               // line apart: each thread writes its own counters
     std::vector<Entry> cur, next;
     std::vector<Entry> out_down, out_up;        // to the ranks below and above
     std::vector<std::vector<Entry>> out_local;  // to this rank's threads
@@ -207,7 +238,7 @@ class LevelBfs {
     int id = 0;
     std::uint64_t expanded = 0, generated = 0, fresh = 0;
     bool goal_hit = false;
-    int stop = 0;  // 1 timeout, 2 budget, 3 cancelled: the highest wins
+    int stop = 0;  // 1 timeout, 2 budget, 3 cancelled, 4 failed: the highest wins
   };
 
   Word* code_words(const Block& b, std::uint64_t tile) {

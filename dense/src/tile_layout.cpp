@@ -11,6 +11,8 @@ TileLayout::TileLayout(int dims, int extent, int in_tile_axes)
   if (in_tile_axes != 1 && in_tile_axes != 2)
     throw std::logic_error("TileLayout: 1 or 2 in-tile axes");
   if (in_tile_axes == 2 && dims < 2) throw std::logic_error("TileLayout: 8 x 8 tiles need 2D");
+  if (!fits(dims, extent, in_tile_axes))
+    throw std::logic_error("TileLayout: more than kMaxTiles tiles (check fits() first)");
   std::int64_t stride = 1;
   for (int a = 0; a < dims; ++a) {
     side_[a] = in_tile_axes == 1 ? (a == 0 ? 64 : 1) : (a < 2 ? 8 : 1);
@@ -20,6 +22,16 @@ TileLayout::TileLayout(int dims, int extent, int in_tile_axes)
     stride *= tiles_[a];
   }
   tile_count_ = static_cast<std::uint64_t>(stride);
+}
+
+bool TileLayout::fits(int dims, int extent, int in_tile_axes) {
+  // Multiplied in double: 16 axes of 65,535 tiles would overflow any integer type.
+  double tiles = 1.0;
+  for (int a = 0; a < dims; ++a) {
+    const int side = in_tile_axes == 1 ? (a == 0 ? 64 : 1) : (a < 2 ? 8 : 1);
+    tiles *= static_cast<double>((extent + side - 1) / side);
+  }
+  return tiles <= static_cast<double>(kMaxTiles);
 }
 
 std::uint64_t TileLayout::tile_of(std::span<const int> c) const {

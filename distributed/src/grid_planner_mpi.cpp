@@ -2,6 +2,7 @@
 
 #include "hpcplan/distributed/mpi_slab_transport.hpp"
 
+#include <algorithm>
 #include <thread>
 
 #include "hpcplan/core/error.hpp"
@@ -144,24 +145,45 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
   dr.batch_age_ms = dist.batch_age_ms;
   dr.sync_every = dist.sync_every;
 
-  if (dist.compare_serial && comm.rank() == 0) {
-    // Before the distributed run (the other ranks wait at its opening barrier), so the two
-    // never compete for cores.
-    // The ranks expand every lattice state, so the reference does too (no jump points at 2D):
-    // search overhead compares like with like.
-    GridSearchOptions serial_options = options;
-    serial_options.jump_points = false;
-    const GridReport serial = solve_grid(problem, serial_options);
-    report.serial =
-        SerialReference{serial.result.status, serial.result.cost, serial.result.hops,
-                        serial.result.counters.expanded, serial.result.counters.time_ms};
+  // The engine, its threads and its memory budget must be the same on every rank, but each
+  // rank derives its defaults from its own node (free memory, cores, ranks sharing them): all
+  // take the smallest.
+  GridSearchOptions agreed = options;
+  {
+    double v[2] = {static_cast<double>(dense_memory_budget(options, report)),
+                   static_cast<double>(dense_threads(options, comm.ranks_on_node()))};
+    comm.allreduce_min(v);
+    agreed.memory_budget = static_cast<std::uint64_t>(std::min(v[0], 1.8e19));
+    agreed.threads = static_cast<int>(v[1]);
+  }
+  const bool dense = uses_dense_engine(field, agreed, report, comm.size());
+
+  if (dist.compare_serial) {
+    if (comm.rank() == 0) {
+      // Before the distributed run, while the other ranks sleep at the barrier below, so the
+      // two never compete for cores. The ranks expand every lattice state, so the reference
+      // does too (no jump points at 2D): search overhead compares like with like.
+      GridSearchOptions serial_options = agreed;
+      serial_options.jump_points = false;
+      serial_options.threads = 1;
+      // The dense engine's serial reference holds the whole lattice in one process: where
+      // that is over the budget there is no reference (rather than one rank failing alone).
+      if (!dense || options.engine != GridEngine::dense ||
+          dense_fits(field, serial_options, report, 1)) {
+        const GridReport serial = solve_grid(field, problem, serial_options);
+        report.serial =
+            SerialReference{serial.result.status, serial.result.cost, serial.result.hops,
+                            serial.result.counters.expanded, serial.result.counters.time_ms};
+      }
+    }
+    comm.quiet_barrier();
   }
 
-  if (uses_dense_engine(field, options, report, comm.size())) {
+  if (dense) {
     // Slabs of the dense lattice, one per rank; one rank is the serial dense engine.
     MpiSlabTransport transport(comm);
     dr.scheme = comm.size() == 1 ? "serial" : "dense_slabs";
-    run_dense(field, problem, options, transport, comm.ranks_on_node(), report);
+    run_dense(field, problem, agreed, transport, comm.ranks_on_node(), report);
     const dense::Figures& f = *report.dense;
     dr.per_rank.assign(f.rank_expanded.size(), {});
     for (std::size_t r = 0; r < dr.per_rank.size(); ++r) {

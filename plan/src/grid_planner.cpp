@@ -52,6 +52,12 @@ std::uint64_t dense_memory_budget(const GridSearchOptions& options, const GridRe
   return report.options.max_states * bytes_per_state(report.options.key_words);
 }
 
+int dense_threads(const GridSearchOptions& options, int ranks_sharing_memory) {
+  if (options.threads > 0) return options.threads;
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return std::max(1, cores / std::max(1, ranks_sharing_memory));
+}
+
 namespace {
 
 dense::Query dense_query(const GogField&, const GridProblem& problem, const GridSearchOptions& o,
@@ -62,8 +68,7 @@ dense::Query dense_query(const GogField&, const GridProblem& problem, const Grid
   q.algorithm =
       o.algorithm == GridAlgorithm::bfs ? dense::Algorithm::bfs : dense::Algorithm::dijkstra;
   q.connectivity = problem.connectivity;
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  q.threads = o.threads > 0 ? o.threads : std::max(1, cores / std::max(1, ranks_sharing_memory));
+  q.threads = dense_threads(o, ranks_sharing_memory);
   q.keep_path = o.keep_path;
   q.block_layers = o.contiguous_slabs ? 0 : o.slab_layers > 0 ? o.slab_layers : -1;
   q.memory_budget = dense_memory_budget(o, report);
@@ -87,21 +92,26 @@ double validated_dense_path(const GogField& field, const GridProblem& problem,
 
 }  // namespace
 
-bool uses_dense_engine(const GogField& field, const GridSearchOptions& options,
-                       const GridReport& report, int ranks) {
-  if (options.engine == GridEngine::sparse) return false;
-  if (options.algorithm != GridAlgorithm::bfs && options.algorithm != GridAlgorithm::dijkstra)
-    return false;
-  if (options.engine == GridEngine::dense) return true;
+bool dense_fits(const GogField& field, const GridSearchOptions& options, const GridReport& report,
+                int ranks) {
   dense::Query q;
   q.algorithm =
       options.algorithm == GridAlgorithm::bfs ? dense::Algorithm::bfs : dense::Algorithm::dijkstra;
   q.connectivity = parse_connectivity(report.problem.connectivity);
   q.keep_path = options.keep_path;
+  q.threads = dense_threads(options, 1);
   q.block_layers = options.contiguous_slabs  ? 0
                    : options.slab_layers > 0 ? options.slab_layers
                                              : -1;
   return dense::planned_bytes(field, q, ranks) <= dense_memory_budget(options, report);
+}
+
+bool uses_dense_engine(const GogField& field, const GridSearchOptions& options,
+                       const GridReport& report, int ranks) {
+  if (options.engine == GridEngine::sparse) return false;
+  if (options.algorithm != GridAlgorithm::bfs && options.algorithm != GridAlgorithm::dijkstra)
+    return false;
+  return options.engine == GridEngine::dense || dense_fits(field, options, report, ranks);
 }
 
 void run_dense(const GogField& field, const GridProblem& problem, const GridSearchOptions& options,

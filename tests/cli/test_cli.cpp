@@ -222,6 +222,31 @@ TEST(Cli, DenseEngineRunsBfsAndDijkstra) {
                    "inside an obstacle");
 }
 
+// The dense engine's limits: a process whose OpenMP runtime starts fewer threads than asked
+// runs with what it has (once the missing threads' blocks were silently skipped: no_path), a
+// lattice too large for any tile index is refused for --engine dense and left to the sparse
+// engine by auto (once an overflowing tile count crashed the default run).
+TEST(Cli, DenseEngineKeepsWithinItsLimits) {
+  const std::string q = "grid --dims 3 --extent 30 --algo bfs --engine dense --json";
+  const CliRun one = run(q + " --threads 1");
+  ::setenv("OMP_THREAD_LIMIT", "1", 1);
+  const CliRun limited = run(q + " --threads 2 --slab-layers 4");
+  ::unsetenv("OMP_THREAD_LIMIT");
+  ASSERT_EQ(one.code, 0) << one.err;
+  ASSERT_EQ(limited.code, 0) << limited.err;
+  const auto jo = nlohmann::json::parse(one.out), jl = nlohmann::json::parse(limited.out);
+  EXPECT_EQ(jl["status"], "solved");
+  EXPECT_EQ(jl["dense"]["threads"], 1);
+  EXPECT_EQ(jl["cost"], jo["cost"]);
+  expect_bad_input("grid --dims 12 --extent 64 --algo dijkstra --engine dense",
+                   "too large for the dense engine");
+  const CliRun big = run("grid --dims 16 --extent 32 --algo bfs --max-states 1000 --json");
+  ASSERT_EQ(big.code, 0) << big.err;
+  const auto jb = nlohmann::json::parse(big.out);
+  EXPECT_EQ(jb["engine"], "sparse");
+  EXPECT_EQ(jb["status"], "budget_exceeded");
+}
+
 // The rank simulator's report: shares per split are consistent with the observed search.
 TEST(Cli, SimulateRanksReportsEverySplit) {
   const CliRun r =

@@ -62,3 +62,26 @@ took=$(($(date +%s) - killed_at))
 ((rc != 0 && rc != 124)) || fail "killed rank: job exit $rc"
 ((took <= 30)) || fail "killed rank: job took $took s to end"
 echo "ok: killing a rank ended the job in $took s with exit $rc"
+
+# 5. Ranks that derive different limits agree on one engine and one layout (an MPMD launch
+#    stands in for nodes with different memory or cores): a budget that fits the dense
+#    engine on one rank only, and 1 against 8 threads, once hung or answered no_path.
+timeout 120 mpirun -np 1 "$bin" grid --dims 4 --extent 40 --algo bfs --memory-budget 400000 \
+  --json : -np 1 "$bin" grid --dims 4 --extent 40 --algo bfs --memory-budget 600000 --json \
+  >"$tmp/out" 2>"$tmp/err" || fail "ranks with different budgets: exit $? (124 = hang)"
+grep -q '"status":"solved"' "$tmp/out" || fail "ranks with different budgets: not solved"
+timeout 120 mpirun -np 1 "$bin" grid --dims 3 --extent 200 --algo bfs --engine dense \
+  --threads 1 --json : -np 1 "$bin" grid --dims 3 --extent 200 --algo bfs --engine dense \
+  --threads 8 --json >"$tmp/out" 2>"$tmp/err" || fail "ranks with 1 and 8 threads: exit $?"
+python3 -c "import json,sys; j=json.loads(open(sys.argv[1]).read()); \
+assert j['status'] == 'solved' and j['dense']['threads'] == 1, j" "$tmp/out" ||
+  fail "ranks with 1 and 8 threads did not agree on one thread and solve"
+echo "ok: ranks with different budgets and thread counts agreed"
+
+# 6. --compare-serial where only the ranks' slabs fit the budget: no serial reference, and
+#    the job ends (once rank 0 alone refused while the other waited).
+timeout 120 mpirun -np 2 --oversubscribe "$bin" grid --dims 4 --extent 40 --algo bfs \
+  --engine dense --threads 1 --memory-budget 700000 --compare-serial --json >"$tmp/out" \
+  2>"$tmp/err" || fail "--compare-serial over the serial budget: exit $? (124 = hang)"
+grep -q '"serial_reference"' "$tmp/out" && fail "--compare-serial over the budget still ran it"
+echo "ok: --compare-serial without room for the serial dense engine ends cleanly"

@@ -15,7 +15,7 @@
 //   processed in buckets [k, k + 1): no state of a bucket can reach another state of the same
 //   bucket (every move costs at least 1), so the states of a bucket settle in one pass, and the
 //   ranks and threads exchange once per bucket. Memory: a settled bit per state, the pending
-//   classes' lists, and, with a path, the settling class of every state (4 bytes).
+//   classes' lists, and, with a path, the settling class of every state (8 bytes).
 //
 // Slabs along the last axis: each rank holds the layers of one slab (slab_plan.hpp) and sends
 // the targets that fall in a neighbour's slab to it once per level or bucket
@@ -45,7 +45,8 @@ struct Query {
   Connectivity connectivity = Connectivity::seed_pairs;
   int threads = 1;  // OpenMP threads of this rank (>= 1)
   // Layers per block dealt round the ranks and threads; 0: one contiguous slab per rank and
-  // thread, balanced by free states; < 0: about 8 blocks per thread (the default).
+  // thread, balanced by free states; < 0: about 4 blocks per thread, at least 4 layers each (the
+  // default).
   int block_layers = -1;
   bool keep_path = false;           // Dijkstra: record classes and walk the path back
                                     // (BFS always walks it, for its cost, and returns it)
@@ -85,7 +86,8 @@ struct Result : hpcplan::Result<std::vector<int>> {
 };
 
 // The bytes a rank of `ranks` will allocate for this query before its lists grow (the store,
-// marks, window table and a first frontier reserve), and whether 8 x 8 tiles are used.
+// marks, window table and a first frontier reserve); the largest uint64 when the lattice has
+// more tiles than TileLayout::kMaxTiles.
 std::uint64_t planned_bytes(const GogField& field, const Query& query, int ranks);
 
 // Runs the query on this rank's slab; collective over the transport's ranks. InputError if the

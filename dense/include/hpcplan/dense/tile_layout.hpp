@@ -29,6 +29,11 @@ using Word = std::uint64_t;
 
 class TileLayout {
  public:
+  // Tile indices stay below this (2^50 tiles, 2^56 states: 8 PiB of bits, beyond any machine's
+  // memory, and far below 2^53, where tile_coords' double reciprocal stays exact).
+  static constexpr std::uint64_t kMaxTiles = std::uint64_t{1} << 50;
+  // Whether the lattice has at most kMaxTiles tiles (the constructor's precondition).
+  static bool fits(int dims, int extent, int in_tile_axes);
   // in_tile_axes: 1 (rows of 64 along axis 0) or 2 (8 x 8 on axes 0 and 1, dims >= 2).
   TileLayout(int dims, int extent, int in_tile_axes);
 

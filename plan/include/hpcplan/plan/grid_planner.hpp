@@ -101,10 +101,15 @@ GridReport solve_grid(const GogField& field, const GridProblem& problem,
 GridReport prepare_grid_report(const GridProblem& problem, const GridSearchOptions& options,
                                const GogField& field, int ranks_sharing_memory);
 // The dense engine: its memory budget per process (--memory-budget, else what max_states buys
-// the sparse engine), whether it runs this query (--engine dense, or auto for BFS and Dijkstra
-// when `ranks` slabs fit the budget), and a run on this process's slab, collective over the
-// transport, filling the report (its path re-validated move by move with the lattice graph).
+// the sparse engine), its OpenMP threads per process (--threads, else the process's share of
+// the cores), whether `ranks` slabs fit the budget, whether it runs this query (--engine
+// dense, or auto for BFS and Dijkstra when they fit), and a run on this process's slab,
+// collective over the transport, filling the report (its path re-validated move by move with
+// the lattice graph).
 std::uint64_t dense_memory_budget(const GridSearchOptions& options, const GridReport& report);
+int dense_threads(const GridSearchOptions& options, int ranks_sharing_memory);
+bool dense_fits(const GogField& field, const GridSearchOptions& options, const GridReport& report,
+                int ranks);
 bool uses_dense_engine(const GogField& field, const GridSearchOptions& options,
                        const GridReport& report, int ranks);
 void run_dense(const GogField& field, const GridProblem& problem, const GridSearchOptions& options,
