@@ -90,6 +90,7 @@ def main():
     for exe in (CLI, SCALING):
         if not os.access(exe, os.X_OK):
             sys.exit(f"dense_targets: {exe} missing; build first (bash scripts/build.sh)")
+    os.makedirs(os.path.join(ROOT, "results"), exist_ok=True)
     out = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "cores": os.cpu_count(),
            "repeats": o.repeats}
     one = ["--threads", "1"]
