@@ -35,7 +35,9 @@ def grid(args, timeout=3600):
     cmd = ["/usr/bin/time", "-f", "%e %M", CLI, "grid", "--json", *args]
     p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
     if p.returncode != 0:
-        sys.exit(f"dense_targets: {' '.join(cmd[3:])} failed: {p.stderr.strip().splitlines()[-1:]}")
+        # time's own line is the last; the program's error is the one before it.
+        lines = p.stderr.strip().splitlines()
+        sys.exit(f"dense_targets: {' '.join(cmd[3:])} failed: {lines[-2] if len(lines) > 1 else lines}")
     wall, rss_kb = p.stderr.strip().splitlines()[-1].split()
     j = json.loads(p.stdout)
     j["_wall_s"], j["_rss_bytes"] = float(wall), int(rss_kb) * 1024
@@ -67,7 +69,9 @@ def mpi_scaling(problem, repeats):
         os.remove(csv)
     cmd = ["mpirun", "-np", "2", SCALING, "--engine", "dense", *problem, "--repeats", str(repeats),
            "--ceiling", "--csv", csv]
-    subprocess.run(cmd, check=True, env=env, capture_output=True, text=True)
+    p = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit(f"dense_targets: {' '.join(cmd)} failed: {p.stderr.strip()[-500:]}")
     with open(csv) as f:
         header = f.readline().strip().split(",")
         rows = [dict(zip(header, line.strip().split(","))) for line in f if line.strip()]
@@ -87,7 +91,7 @@ def main():
     o = ap.parse_args()
     if o.repeats < 1:
         sys.exit("dense_targets: --repeats must be at least 1")
-    for exe in (CLI, SCALING):
+    for exe in (CLI, SCALING, "/usr/bin/time"):
         if not os.access(exe, os.X_OK):
             sys.exit(f"dense_targets: {exe} missing; build first (bash scripts/build.sh)")
     os.makedirs(os.path.join(ROOT, "results"), exist_ok=True)

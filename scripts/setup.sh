@@ -29,7 +29,7 @@ PACKAGES=(
   libompl-dev ompl-demos python3-matplotlib libnanoflann-dev
   python3-vtk9 ffmpeg
   slurm-wlm munge
-  clang libomp-dev
+  clang libomp-dev libclang-rt-dev time
 )
 
 if ((with_cuda)) && ! command -v nvcc >/dev/null && [[ ! -x /usr/local/cuda/bin/nvcc ]]; then

@@ -16,6 +16,14 @@ ctest_run() { ctest --no-tests=error --output-on-failure -j "$jobs" "$@"; }
 # side against 13 s each alone, and 25 s side by side with passive waiting.
 export OMP_WAIT_POLICY=passive
 
+# The ThreadSanitizer stage's OpenMP tool, checked before half an hour of other stages: clang's
+# resource directory is <llvm>/lib/clang/<version>, and Archer sits in <llvm>/lib.
+archer=$(dirname "$(dirname "$(clang++ -print-resource-dir)")")/libarcher.so
+if [[ ! -f $archer ]]; then
+  echo "test: clang's libarcher.so (Debian's libomp-dev) is missing; run scripts/setup.sh" >&2
+  exit 1
+fi
+
 echo "== build (Release)"
 bash scripts/build.sh build
 echo "== tests (Release)"
@@ -49,14 +57,9 @@ echo "== build (ThreadSanitizer: threaded tests)"
 # see its barriers and reported the dense engine's hand-offs between barriers as races (CI, stop
 # 36). LLVM's runtime with its Archer tool (OMP_TOOL_LIBRARIES below) tells TSan about every
 # barrier, task and lock, so the OpenMP loops are checked too, not just the std::threads.
-# clang's resource directory is <llvm>/lib/clang/<version>; Archer sits in <llvm>/lib.
-archer=$(dirname "$(dirname "$(clang++ -print-resource-dir)")")/libarcher.so
-if [[ ! -f $archer ]]; then
-  echo "test: clang's libarcher.so (Debian's libomp-dev) is missing; run scripts/setup.sh" >&2
-  exit 1
-fi
-CC=clang CXX=clang++ bash scripts/build.sh build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  "$sanitizer_flags" -DHPCPLAN_SANITIZE=thread -DHPCPLAN_BUILD_BENCH=OFF -DHPCPLAN_BUILD_CLI=OFF \
+# The compilers as cache options, not CC/CXX, which a tree configured earlier with g++ ignores.
+bash scripts/build.sh build-tsan -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo "$sanitizer_flags" -DHPCPLAN_SANITIZE=thread -DHPCPLAN_BUILD_BENCH=OFF -DHPCPLAN_BUILD_CLI=OFF \
   --target hpcplan_thread_tests --target hpcplan_sim_tests --target hpcplan_dense_thread_tests
 echo "== tests (ThreadSanitizer)"
 # ignore_noninstrumented_modules: accesses inside the uninstrumented runtime itself are Archer's

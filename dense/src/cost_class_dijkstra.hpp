@@ -309,9 +309,8 @@ class CostClassDijkstra {
     }
   };
 
-  struct alignas(64) Thread {
-    std::exception_ptr error;  // the first exception of this thread's work (guarded)  // a cache
-                               // line apart: each thread writes its own counters
+  struct alignas(64) Thread {  // a cache line apart: each thread writes its own counters
+    std::exception_ptr error;  // the first exception of this thread's work (caught())
     std::map<ClassKey, std::vector<Entry>> pending;
     Dedup dedup[5];  // per move length
     std::uint32_t epoch = 0;

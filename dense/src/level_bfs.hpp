@@ -228,9 +228,8 @@ class LevelBfs {
   }
 
  private:
-  struct alignas(64) Thread {
-    std::exception_ptr error;  // the first exception of this thread's work (guarded)  // a cache
-                               // line apart: each thread writes its own counters
+  struct alignas(64) Thread {  // a cache line apart: each thread writes its own counters
+    std::exception_ptr error;  // the first exception of this thread's work (caught())
     std::vector<Entry> cur, next;
     std::vector<Entry> out_down, out_up;        // to the ranks below and above
     std::vector<std::vector<Entry>> out_local;  // to this rank's threads

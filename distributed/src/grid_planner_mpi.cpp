@@ -163,13 +163,15 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
       // Before the distributed run, while the other ranks sleep at the barrier below, so the
       // two never compete for cores. The ranks expand every lattice state, so the reference
       // does too (no jump points at 2D): search overhead compares like with like.
-      GridSearchOptions serial_options = agreed;
+      // One process on one core, with the budget a plain run would have (not a rank's share).
+      GridSearchOptions serial_options = options;
       serial_options.jump_points = false;
       serial_options.threads = 1;
       // The dense engine's serial reference holds the whole lattice in one process: where
-      // that is over the budget there is no reference (rather than one rank failing alone).
-      if (!dense || options.engine != GridEngine::dense ||
-          dense_fits(field, serial_options, report, 1)) {
+      // that is over the budget there is no reference (rather than rank 0 failing alone, or
+      // a reference from the other engine).
+      const GridReport serial_plan = prepare_grid_report(problem, serial_options, field, 1);
+      if (!dense || dense_fits(field, serial_options, serial_plan, 1)) {
         const GridReport serial = solve_grid(field, problem, serial_options);
         report.serial =
             SerialReference{serial.result.status, serial.result.cost, serial.result.hops,

@@ -66,11 +66,11 @@ echo "ok: killing a rank ended the job in $took s with exit $rc"
 # 5. Ranks that derive different limits agree on one engine and one layout (an MPMD launch
 #    stands in for nodes with different memory or cores): a budget that fits the dense
 #    engine on one rank only, and 1 against 8 threads, once hung or answered no_path.
-timeout 120 mpirun -np 1 "$bin" grid --dims 4 --extent 40 --algo bfs --memory-budget 400000 \
+timeout 120 mpirun --oversubscribe -np 1 "$bin" grid --dims 4 --extent 40 --algo bfs --memory-budget 400000 \
   --json : -np 1 "$bin" grid --dims 4 --extent 40 --algo bfs --memory-budget 600000 --json \
   >"$tmp/out" 2>"$tmp/err" || fail "ranks with different budgets: exit $? (124 = hang)"
 grep -q '"status":"solved"' "$tmp/out" || fail "ranks with different budgets: not solved"
-timeout 120 mpirun -np 1 "$bin" grid --dims 3 --extent 200 --algo bfs --engine dense \
+timeout 120 mpirun --oversubscribe -np 1 "$bin" grid --dims 3 --extent 200 --algo bfs --engine dense \
   --threads 1 --json : -np 1 "$bin" grid --dims 3 --extent 200 --algo bfs --engine dense \
   --threads 8 --json >"$tmp/out" 2>"$tmp/err" || fail "ranks with 1 and 8 threads: exit $?"
 python3 -c "import json,sys; j=json.loads(open(sys.argv[1]).read()); \
