@@ -101,8 +101,7 @@ class CostClassDijkstra {
     std::uint64_t buckets = 0, settled_total = 0, peak_pending = 1;
     Status status = Status::no_path;
     bool solved = false, done = false;
-    std::vector<std::byte> from_below, from_above;
-    std::vector<ClassEntry> down, up, received;
+    HaloSwap<ClassEntry> halo;
     const std::uint64_t budget = q_.memory_budget;
     std::uint64_t list_peak = 0;
 
@@ -130,7 +129,7 @@ class CostClassDijkstra {
               // Where this class's targets go, per move length (axes 1..4).
               std::vector<Entry>* into[5] = {};
               for (const Entry& e : list) {
-                if ((++n & 1023) == 0 && poll_stop(me)) {
+                if ((++n & 1023) == 0 && poll_stop(workers_stop_, me)) {
                   stopped = true;
                   break;
                 }
@@ -152,27 +151,15 @@ class CostClassDijkstra {
               if (me.settled > settled_before) me.processed.push_back(key);
               me.recycle(std::move(list));
             }
-            if (budget && list_bytes(me) * T + fixed > budget) me.stop = std::max(me.stop, 2);
+            if (budget && list_bytes(me) * T + fixed > budget)
+              me.stop = std::max(me.stop, kStopBudget);
           } catch (...) {
             caught(me);
           }
 #pragma omp barrier
 #pragma omp master
           try {
-            down.clear();
-            up.clear();
-            for (const Thread& t : threads_) {
-              down.insert(down.end(), t.out_down.begin(), t.out_down.end());
-              up.insert(up.end(), t.out_up.begin(), t.out_up.end());
-            }
-            tr_.exchange(slabs_.below, as_bytes_of(down), slabs_.above, as_bytes_of(up), from_below,
-                         from_above);
-            for (auto& box : inbox_) box.clear();
-            for (const std::vector<std::byte>* bytes : {&from_below, &from_above}) {
-              from_bytes(*bytes, received);
-              for (const ClassEntry& e : received)
-                inbox_[slabs_.of_tile(e.tile).thread].push_back(e);
-            }
+            halo.run(tr_, slabs_, threads_, inbox_);
           } catch (...) {
             caught(threads_.front());
           }
@@ -192,10 +179,7 @@ class CostClassDijkstra {
               std::uint64_t sums[2] = {0, 0};
               double next = std::numeric_limits<double>::infinity();
               std::uint64_t lists = 0;
-              if (q_.stop.can_stop())
-                if (const auto s = q_.stop.check())
-                  threads_.front().stop =
-                      std::max(threads_.front().stop, *s == Status::cancelled ? 3 : 1);
+              poll_stop(q_.stop, threads_.front());
               for (Thread& t : threads_) {
                 maxes[0] |= t.goal_hit ? 1 : 0;
                 maxes[1] = std::max<std::uint64_t>(maxes[1], t.stop);
@@ -218,9 +202,7 @@ class CostClassDijkstra {
                 solved = true;
                 done = true;
               } else if (maxes[1]) {
-                status = maxes[1] == 3   ? Status::cancelled
-                         : maxes[1] == 2 ? Status::budget_exceeded
-                                         : Status::timeout;
+                status = stopped_status(maxes[1]);
                 done = true;
               } else if (!std::isfinite(next)) {
                 status = Status::no_path;
@@ -253,8 +235,8 @@ class CostClassDijkstra {
       local[1] += t.generated;
       classes.insert(classes.end(), t.processed.begin(), t.processed.end());
     }
-    res.figures.rank_expanded = gather_u64(local[0]);
-    res.figures.rank_search_ms = gather_double(clock.milliseconds());
+    res.figures.rank_expanded = gather_ranks(tr_, local[0]);
+    res.figures.rank_search_ms = gather_ranks(tr_, clock.milliseconds());
     tr_.sum(std::span<std::uint64_t>(local, 2));
     k.expanded = local[0];
     k.generated = local[1];
@@ -322,7 +304,7 @@ class CostClassDijkstra {
     std::uint64_t settled = 0, generated = 0, reported = 0;
     bool goal_hit = false;
     ClassKey goal_key;
-    int stop = 0;  // 1 timeout, 2 budget, 3 cancelled, 4 failed: the highest wins
+    int stop = 0;  // kStop* code, the highest wins
 
     std::uint64_t settled_now() {
       const std::uint64_t d = settled - reported;
@@ -355,15 +337,6 @@ class CostClassDijkstra {
     for (const auto& list : t.spare) n += list.capacity() * sizeof(Entry);
     return n;
   }
-  bool poll_stop(Thread& me) const {
-    if (!q_.stop.can_stop()) return false;
-    if (const auto s = q_.stop.check()) {
-      me.stop = std::max(me.stop, *s == Status::cancelled ? 3 : 1);
-      return true;
-    }
-    return false;
-  }
-
   void record(const Block& b, std::uint64_t tile, Word fresh, const ClassKey& key) {
     if (!key.packable())
       throw RunError(
@@ -416,19 +389,6 @@ class CostClassDijkstra {
     const Block& b = slabs_.of_tile(e.tile);
     const Word open = e.bits & ~settled_[b.store + (e.tile - b.lo)];
     if (open) me.class_list(e.key).push_back({e.tile, open});
-  }
-
-  std::vector<std::uint64_t> gather_u64(std::uint64_t v) {
-    const auto bytes = tr_.allgather(std::as_bytes(std::span<const std::uint64_t>(&v, 1)));
-    std::vector<std::uint64_t> out(bytes.size() / sizeof(v));
-    std::memcpy(out.data(), bytes.data(), out.size() * sizeof(v));
-    return out;
-  }
-  std::vector<double> gather_double(double v) {
-    const auto bytes = tr_.allgather(std::as_bytes(std::span<const double>(&v, 1)));
-    std::vector<double> out(bytes.size() / sizeof(v));
-    std::memcpy(out.data(), bytes.data(), out.size() * sizeof(v));
-    return out;
   }
 
   // Classes processed anywhere (a class spanning several slabs is processed by each).
@@ -521,6 +481,10 @@ class CostClassDijkstra {
   const FreeWindows& windows_;
   const Kernel& kernel_;
   const SlabMap& slabs_;
+  // What every thread polls in its work; the master thread alone also evaluates the query's
+  // condition (Stop's contract: a condition runs on one polling thread), once per level or
+  // bucket.
+  const Stop workers_stop_ = q_.stop.without_condition();
   std::uint64_t free_states_ = 0;
   std::array<std::int64_t, kMaxDims> stride_{};
   ZeroedWords settled_, keys_;

@@ -15,6 +15,7 @@
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/progress.hpp"
+#include "hpcplan/core/stop.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/dense/dense_search.hpp"
 #include "hpcplan/dense/free_windows.hpp"
@@ -25,10 +26,27 @@
 
 namespace hpcplan::dense::detail {
 
-// One tile of a frontier or an outbox: its index and a word of states.
-// Stop codes of an engine's threads, the highest wins: 1 timeout, 2 budget, 3 cancelled,
-// 4 failed (an exception).
-inline constexpr int kStopFailed = 4;
+// Stop codes of an engine's threads; the highest any thread of any rank raised wins.
+inline constexpr int kStopTimeout = 1, kStopBudget = 2, kStopCancelled = 3,
+                     kStopFailed = 4;  // an exception (caught())
+
+// Polls the query's stop condition for one thread: raises its stop code, says whether to stop.
+template <class Thread>
+bool poll_stop(const Stop& stop, Thread& me) {
+  if (!stop.can_stop()) return false;
+  if (const auto s = stop.check()) {
+    me.stop = std::max(me.stop, *s == Status::cancelled ? kStopCancelled : kStopTimeout);
+    return true;
+  }
+  return false;
+}
+
+// The status of a run that a stop code other than kStopFailed ended.
+inline Status stopped_status(std::uint64_t code) {
+  return code == kStopCancelled ? Status::cancelled
+         : code == kStopBudget  ? Status::budget_exceeded
+                                : Status::timeout;
+}
 
 // An exception may not leave an OpenMP region (std::terminate), so each phase of a thread's
 // work is a try block whose handler calls this: the first exception is kept in the thread's
@@ -57,23 +75,11 @@ void rethrow_failure(const Threads& threads, int team, bool failed) {
   if (failed) throw RunError("dense engine: another rank failed");
 }
 
+// One tile of a frontier or an outbox: its index and a word of states.
 struct Entry {
   std::uint64_t tile;
   Word bits;
 };
-
-// Sorts entries by tile and ORs the words of equal tiles together.
-inline void sort_and_merge(std::vector<Entry>& v) {
-  std::sort(v.begin(), v.end(), [](const Entry& a, const Entry& b) { return a.tile < b.tile; });
-  std::size_t w = 0;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    if (w > 0 && v[w - 1].tile == v[i].tile)
-      v[w - 1].bits |= v[i].bits;
-    else
-      v[w++] = v[i];
-  }
-  v.resize(w);
-}
 
 template <class T>
 std::span<const std::byte> as_bytes_of(const std::vector<T>& v) {
@@ -122,6 +128,41 @@ struct SlabMap {
   bool holds_layer(int z) const { return blocks[layer_block[z]].rank == rank; }
   bool empty() const { return store_tiles == 0; }
 };
+
+// One rank's halo swap, run by the master thread between two barriers: the threads' outboxes
+// for the ranks below and above, one exchange with them, and what arrived sorted into the
+// inboxes of the threads that own its tiles (read by those threads after the next barrier).
+template <class Item>
+struct HaloSwap {
+  std::vector<Item> down, up, received;
+  std::vector<std::byte> from_below, from_above;
+
+  template <class Threads>
+  void run(SlabTransport& tr, const SlabMap& slabs, const Threads& threads,
+           std::vector<std::vector<Item>>& inbox) {
+    down.clear();
+    up.clear();
+    for (const auto& t : threads) {
+      down.insert(down.end(), t.out_down.begin(), t.out_down.end());
+      up.insert(up.end(), t.out_up.begin(), t.out_up.end());
+    }
+    tr.exchange(slabs.below, as_bytes_of(down), slabs.above, as_bytes_of(up), from_below,
+                from_above);
+    for (auto& box : inbox) box.clear();
+    for (const std::vector<std::byte>* bytes : {&from_below, &from_above}) {
+      from_bytes(*bytes, received);
+      for (const Item& e : received) inbox[slabs.of_tile(e.tile).thread].push_back(e);
+    }
+  }
+};
+
+// Every rank's value of v, in rank order (collective).
+template <class T>
+std::vector<T> gather_ranks(SlabTransport& tr, T v) {
+  std::vector<T> out;
+  from_bytes(tr.allgather(std::as_bytes(std::span<const T>(&v, 1))), out);
+  return out;
+}
 
 // Blocks of about this many per worker when block_layers is left to the engine (< 0).
 inline constexpr int kBlocksPerWorker = 4;

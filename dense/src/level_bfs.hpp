@@ -69,8 +69,7 @@ class LevelBfs {
     Status status = Status::no_path;
     bool solved = trivial;
     bool done = trivial;
-    std::vector<std::byte> from_below, from_above;
-    std::vector<Entry> down, up, received;
+    HaloSwap<Entry> halo;
     const std::uint64_t budget = q_.memory_budget;
     std::uint64_t list_peak = 0;
 
@@ -97,29 +96,18 @@ class LevelBfs {
             }
             std::size_t n = 0;
             for (const Entry& e : me.cur) {
-              if ((++n & 1023) == 0 && poll_stop(me)) break;
+              if ((++n & 1023) == 0 && poll_stop(workers_stop_, me)) break;
               expand(me, e, c0, c1);
             }
-            if (budget && list_bytes(me) * T + fixed > budget) me.stop = std::max(me.stop, 2);
+            if (budget && list_bytes(me) * T + fixed > budget)
+              me.stop = std::max(me.stop, kStopBudget);
           } catch (...) {
             caught(me);
           }
 #pragma omp barrier
 #pragma omp master
           try {
-            down.clear();
-            up.clear();
-            for (const Thread& t : threads_) {
-              down.insert(down.end(), t.out_down.begin(), t.out_down.end());
-              up.insert(up.end(), t.out_up.begin(), t.out_up.end());
-            }
-            tr_.exchange(slabs_.below, as_bytes_of(down), slabs_.above, as_bytes_of(up), from_below,
-                         from_above);
-            for (auto& box : inbox_) box.clear();
-            for (const std::vector<std::byte>* bytes : {&from_below, &from_above}) {
-              from_bytes(*bytes, received);
-              for (const Entry& e : received) inbox_[slabs_.of_tile(e.tile).thread].push_back(e);
-            }
+            halo.run(tr_, slabs_, threads_, inbox_);
           } catch (...) {
             caught(threads_.front());
           }
@@ -138,10 +126,7 @@ class LevelBfs {
           {
             try {
               // One reduction: new states, next frontier entries, goal reached, stop.
-              if (q_.stop.can_stop())
-                if (const auto s = q_.stop.check())
-                  threads_.front().stop =
-                      std::max(threads_.front().stop, *s == Status::cancelled ? 3 : 1);
+              poll_stop(q_.stop, threads_.front());
               std::uint64_t sums[2] = {0, 0};
               std::uint64_t maxes[2] = {0, 0};
               std::uint64_t lists = 0;
@@ -165,9 +150,7 @@ class LevelBfs {
                 solved = true;
                 done = true;
               } else if (maxes[1]) {
-                status = maxes[1] == 3   ? Status::cancelled
-                         : maxes[1] == 2 ? Status::budget_exceeded
-                                         : Status::timeout;
+                status = stopped_status(maxes[1]);
                 done = true;
               } else if (sums[1] == 0) {
                 status = Status::no_path;
@@ -200,8 +183,8 @@ class LevelBfs {
       local[1] += t.generated;
     }
     const double search_ms = clock.milliseconds();
-    res.figures.rank_expanded = gather_u64(local[0]);
-    res.figures.rank_search_ms = gather_double(search_ms);
+    res.figures.rank_expanded = gather_ranks(tr_, local[0]);
+    res.figures.rank_search_ms = gather_ranks(tr_, search_ms);
     tr_.sum(std::span<std::uint64_t>(local, 2));
     k.expanded = local[0];
     k.generated = local[1];
@@ -237,7 +220,7 @@ class LevelBfs {
     int id = 0;
     std::uint64_t expanded = 0, generated = 0, fresh = 0;
     bool goal_hit = false;
-    int stop = 0;  // 1 timeout, 2 budget, 3 cancelled, 4 failed: the highest wins
+    int stop = 0;  // kStop* code, the highest wins
   };
 
   Word* code_words(const Block& b, std::uint64_t tile) {
@@ -268,15 +251,6 @@ class LevelBfs {
         t.cur.capacity() + t.next.capacity() + t.out_down.capacity() + t.out_up.capacity();
     for (const auto& box : t.out_local) n += box.capacity();
     return n * sizeof(Entry);
-  }
-
-  bool poll_stop(Thread& me) const {
-    if (!q_.stop.can_stop()) return false;
-    if (const auto s = q_.stop.check()) {
-      me.stop = std::max(me.stop, *s == Status::cancelled ? 3 : 1);
-      return true;
-    }
-    return false;
   }
 
   // Bits reaching tile u of block b, which this thread owns.
@@ -330,19 +304,6 @@ class LevelBfs {
         });
   }
 
-  std::vector<std::uint64_t> gather_u64(std::uint64_t v) {
-    const auto bytes = tr_.allgather(std::as_bytes(std::span<const std::uint64_t>(&v, 1)));
-    std::vector<std::uint64_t> out(bytes.size() / sizeof(v));
-    std::memcpy(out.data(), bytes.data(), out.size() * sizeof(v));
-    return out;
-  }
-  std::vector<double> gather_double(double v) {
-    const auto bytes = tr_.allgather(std::as_bytes(std::span<const double>(&v, 1)));
-    std::vector<double> out(bytes.size() / sizeof(v));
-    std::memcpy(out.data(), bytes.data(), out.size() * sizeof(v));
-    return out;
-  }
-
   // The code (0: not reached, else level mod 3 + 1) of a state this rank holds.
   int code_at(const int* c) const {
     const std::uint64_t tile = layout_.tile_of(std::span<const int>(c, D));
@@ -391,6 +352,10 @@ class LevelBfs {
   const FreeWindows& windows_;
   const Kernel& kernel_;
   const SlabMap& slabs_;
+  // What every thread polls in its work; the master thread alone also evaluates the query's
+  // condition (Stop's contract: a condition runs on one polling thread), once per level or
+  // bucket.
+  const Stop workers_stop_ = q_.stop.without_condition();
   std::uint64_t free_states_ = 0;
   std::array<std::int64_t, kMaxDims> stride_{};
   ZeroedWords codes_;

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <mutex>
+#include <set>
 #include <thread>
 
 #include "hpcplan/dense/dense_search.hpp"
@@ -69,6 +71,34 @@ TEST(DenseThreads, AnotherThreadCancelsARun) {
     // A run this size takes seconds under the sanitizer: it is stopped, not finished.
     EXPECT_EQ(r.status, Status::cancelled);
     EXPECT_TRUE(r.path.empty());
+  }
+}
+
+// A stop condition (OMPL's termination condition, say) runs on one thread only, as Stop's
+// contract says: the OpenMP threads poll the token and deadline, the calling thread alone the
+// condition. Recorded under a mutex, so the test itself is race-free either way.
+TEST(DenseThreads, TheStopConditionRunsOnTheCallingThreadOnly) {
+  GogParams gp;
+  // Wide enough that each thread expands more than 1,024 entries in a level: the threads
+  // poll once per 1,024.
+  const GogField field(4, 48, gp);
+  for (const dense::Algorithm a : {dense::Algorithm::bfs, dense::Algorithm::dijkstra}) {
+    std::mutex m;
+    std::set<std::thread::id> callers;
+    int calls = 0;
+    dense::Query q = corner_query(field, a, 2);
+    q.block_layers = 1;  // both threads busy every level
+    q.stop.also_when([&] {
+      const std::lock_guard lock(m);
+      callers.insert(std::this_thread::get_id());
+      ++calls;
+      return false;
+    });
+    dense::LocalTransport local;
+    const dense::Result r = dense::search(field, q, local);
+    EXPECT_EQ(r.status, Status::solved);
+    EXPECT_GT(calls, 0);
+    EXPECT_EQ(callers, std::set<std::thread::id>{std::this_thread::get_id()});
   }
 }
 

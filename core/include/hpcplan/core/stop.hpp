@@ -7,7 +7,8 @@
 // Threads: a Stop is a value owned by one run; copy it into each run. The token's stop source
 // may be triggered from any thread (std::stop_token is thread-safe). The condition is evaluated
 // on the thread that polls, so it needs no watcher thread (starting and joining one cost a
-// 2D OMPL query 0.3-1 ms, more than its search).
+// 2D OMPL query 0.3-1 ms, more than its search); threads polling in parallel share
+// without_condition(), and one of them checks the whole stop.
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -39,6 +40,15 @@ class Stop {
   Stop& also_when(std::function<bool()> condition) {
     condition_ = std::move(condition);
     return *this;
+  }
+
+  // This stop without its condition: the part any number of threads may check at once (the
+  // token and the deadline), for loops whose threads poll in parallel while one thread also
+  // checks the whole stop (the dense engine's master thread, once per level).
+  Stop without_condition() const {
+    Stop s = *this;
+    s.condition_ = nullptr;
+    return s;
   }
 
   bool can_stop() const {
