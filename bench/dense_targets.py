@@ -9,9 +9,6 @@
   D. two MPI ranks against one (hpcplan_mpi_scaling --engine dense --ceiling): the machine's
      ceiling (the serial search on both cores at once, same rounds) beside both, on the 4D
      extent-100 BFS, a 5D BFS and a 4D Dijkstra.
-  F. tile shapes at small extents: 8 x 8 tiles against short rows packed several to a word
-     (--tile-width 16: 16 x 4; 11: 11 x 5), alternated, on the 6D extent-11 BFS and Dijkstra and
-     a 4D extent-12 Dijkstra.
   E. with --big: the 5D extent-100 BFS (10^10 states) on two threads, once, with its wall time
      and peak resident memory, and a 6D extent-40 BFS; from their figures a prediction of the
      6D extent-100 BFS per rank count (stated as a prediction, never run here).
@@ -134,19 +131,6 @@ def main():
                          "threads_max": r["ratio_max"], **{"ranks_" + k: v for k, v in m.items()}})
     out["parallel"] = parallel
 
-    # F. tile shapes at small extents: the default 8 x 8 against packed short rows.
-    shapes = []
-    for d, e, algo in [(6, 11, "bfs"), (6, 11, "dijkstra"), (4, 12, "dijkstra")]:
-        q = ["--dims", str(d), "--extent", str(e), "--algo", algo, "--engine", "dense", *one]
-        for width in (16, 11):
-            r = alternated(q, [*q, "--tile-width", str(width)], o.repeats)
-            shapes.append({"dims": d, "extent": e, "algo": algo, "width": width,
-                           "tile": r["b"]["dense"]["tile"], "square_ms": r["a_ms"],
-                           "packed_ms": r["b_ms"], "ratio": r["ratio"], "ratio_min": r["ratio_min"],
-                           "ratio_max": r["ratio_max"], "square_tiles": r["a"]["dense"]["tiles"],
-                           "packed_tiles": r["b"]["dense"]["tiles"]})
-    out["shapes"] = shapes
-
     # E. the big runs, once each.
     if o.big:
         big = []
@@ -195,12 +179,6 @@ def report(out):
               f"({r['threads_min']:.2f}-{r['threads_max']:.2f}) | {r['ranks_serial_ms']:.0f} | "
               f"{r['ranks_speedup']:.2f}x ({r['ranks_speedup_min']:.2f}-{r['ranks_speedup_max']:.2f}) | "
               f"{r['ranks_ceiling']:.2f}x | {100 * r['ranks_of_ceiling']:.0f}% | {r['ranks_deviation']:.1f} |")
-    print("\n| query | 8x8 tiles | 8x8 ms | packed | tiles | packed ms | packed speed (min-max) |")
-    print("|---|---|---|---|---|---|---|")
-    for r in out["shapes"]:
-        print(f"| {r['dims']}D e{r['extent']} {r['algo']} | {r['square_tiles']:,} | {r['square_ms']:.1f} | "
-              f"{r['tile'][0]}x{r['tile'][1]} | {r['packed_tiles']:,} | {r['packed_ms']:.1f} | "
-              f"{r['ratio']:.2f}x ({r['ratio_min']:.2f}-{r['ratio_max']:.2f}) |")
     for r in out.get("big", []):
         print(f"\n{r['dims']}D extent-{r['extent']} BFS, 2 threads: {r['status']}, {r['ms'] / 1e3:.1f} s search "
               f"({r['wall_s']:.1f} s wall), {r['states']:,} states over {r['levels']} levels, "

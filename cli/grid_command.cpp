@@ -61,7 +61,6 @@ Action register_grid_command(CLI::App& app) {
   add_param(cmd, "memory_budget", args->options.memory_budget)->capture_default_str();
   add_param(cmd, "slab_layers", args->options.slab_layers)->capture_default_str();
   add_param(cmd, "contiguous_slabs", args->options.contiguous_slabs);
-  add_param(cmd, "tile_width", args->options.tile_width)->capture_default_str();
   cmd->add_option("--connectivity", args->connectivity, "seed (1 or 2 axes) | full (d <= 4)")
       ->capture_default_str();
   add_number(cmd, "--threshold", p.gog.threshold, "GOG threshold c_v (0 = from --density)", 0, 49)

@@ -33,7 +33,7 @@ int in_tile_axes(const GogField& field, const Query& q) {
   // Rows only where they are compiled for (wide 2D and 3D lattices); from 4D a lattice wide
   // enough to need them does not fit any budget anyway.
   if (dims > 3) return 2;
-  const TileLayout square(dims, field.extent(), 2, q.tile_width);
+  const TileLayout square(dims, field.extent(), 2);
   return FreeWindows::table_bytes(square, field.threshold(), max_word_steps(q, dims)) <=
                  kMaxSquareTable
              ? 2
@@ -73,7 +73,7 @@ Result run_engine(const GogField& field, const Query& q, SlabTransport& tr,
 
 template <int D, int K>
 Result run_shape(const GogField& field, const Query& q, SlabTransport& tr) {
-  const TileLayout layout(D, field.extent(), K, q.tile_width);
+  const TileLayout layout(D, field.extent(), K);
   const FreeWindows windows(field, layout, max_word_steps(q, D));
   const detail::SlabMap slabs = detail::plan_slabs(field, layout, tr.rank(), tr.ranks(),
                                                    std::max(1, q.threads), q.block_layers);
@@ -96,8 +96,6 @@ Result run_shape(const GogField& field, const Query& q, SlabTransport& tr) {
   }
   Figures& f = r.figures;
   f.in_tile_axes = K;
-  f.tile_side[0] = layout.shape().side0;
-  f.tile_side[1] = layout.shape().side1;
   f.tiles = layout.tile_count();
   f.threads = slabs.threads;
   f.ranks = tr.ranks();
@@ -136,10 +134,9 @@ Result run_dims(const GogField& field, const Query& q, SlabTransport& tr, int k)
 
 std::uint64_t planned_bytes(const GogField& field, const Query& q, int ranks) {
   const int dims = field.dims();
-  const int k = in_tile_axes(field, q);
-  if (!TileLayout::fits(dims, field.extent(), k, q.tile_width))
+  if (!TileLayout::fits(dims, field.extent(), in_tile_axes(field, q)))
     return std::numeric_limits<std::uint64_t>::max();
-  const TileLayout layout(dims, field.extent(), k, q.tile_width);
+  const TileLayout layout(dims, field.extent(), in_tile_axes(field, q));
   // The rank holding the most tiles under the plan the run will use.
   std::uint64_t tiles = 0;
   for (int r = 0; r < std::max(1, ranks); ++r)

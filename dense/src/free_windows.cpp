@@ -76,17 +76,18 @@ FreeWindows::FreeWindows(const GogField& field, const TileLayout& layout, int ma
         if (!square && o1 != 0) continue;
         Word* out = table_.data() + (pos * windows + w) * range_;
         if (square) {
-          const TileShape& sh = layout.shape();
-          int a[64], b[64];
-          for (int x = 0; x < sh.side0; ++x) a[x] = level(0, sh.side0 * t0 + x + o0);
-          for (int y = 0; y < sh.side1; ++y) b[y] = level(1, sh.side1 * t1 + y + o1);
+          int a[8], b[8];
+          for (int x = 0; x < 8; ++x) {
+            a[x] = level(0, 8 * t0 + x + o0);
+            b[x] = level(1, 8 * t1 + x + o1);
+          }
           for (int i = 0; i < range_; ++i) {
             const int u = i - tau_offset_;
             Word m = 0;
-            for (int y = 0; y < sh.side1; ++y) {
+            for (int y = 0; y < 8; ++y) {
               const int v = u - b[y];
-              for (int x = 0; x < sh.side0; ++x)
-                if (a[x] < v) m |= Word{1} << (x + sh.side0 * y);
+              for (int x = 0; x < 8; ++x)
+                if (a[x] < v) m |= Word{1} << (x + 8 * y);
             }
             out[i] = m;
           }

@@ -4,49 +4,18 @@
 
 namespace hpcplan::dense {
 
-TileShape TileShape::of(int side0, int side1) {
-  if (side0 < 2 || side1 < 2 || side0 * side1 > 64)
-    throw std::logic_error("TileShape: sides of at least 2 and at most 64 cells");
-  TileShape s;
-  s.side0 = side0;
-  s.side1 = side1;
-  for (int y = 0; y < side1; ++y) {
-    s.column_lo |= Word{1} << (side0 * y);
-    s.column_hi |= Word{1} << (side0 * y + side0 - 1);
-  }
-  s.cells = side0 * side1 == 64 ? ~Word{0} : (Word{1} << (side0 * side1)) - 1;
-  s.last_row = side0 * (side1 - 1);
-  return s;
-}
-
-TileShape TileShape::for_extent(int) {
-  return of(8, 8);
-}
-
-namespace {
-TileShape two_axis_shape(int extent, int tile_width) {
-  if (tile_width != 0 && (tile_width < 2 || tile_width > 32))
-    throw std::logic_error("TileLayout: tile width out of [2, 32]");
-  return tile_width ? TileShape::rows_of(tile_width) : TileShape::for_extent(extent);
-}
-}  // namespace
-
-TileLayout::TileLayout(int dims, int extent, int in_tile_axes, int tile_width)
+TileLayout::TileLayout(int dims, int extent, int in_tile_axes)
     : dims_(dims), extent_(extent), in_tile_(in_tile_axes) {
   if (dims < 1 || dims > kMaxDims || extent < 2)
     throw std::logic_error("TileLayout: dims or extent out of range");
   if (in_tile_axes != 1 && in_tile_axes != 2)
     throw std::logic_error("TileLayout: 1 or 2 in-tile axes");
   if (in_tile_axes == 2 && dims < 2) throw std::logic_error("TileLayout: 8 x 8 tiles need 2D");
-  if (!fits(dims, extent, in_tile_axes, tile_width))
+  if (!fits(dims, extent, in_tile_axes))
     throw std::logic_error("TileLayout: more than kMaxTiles tiles (check fits() first)");
-  if (in_tile_axes == 2) shape_ = two_axis_shape(extent, tile_width);
   std::int64_t stride = 1;
   for (int a = 0; a < dims; ++a) {
-    side_[a] = in_tile_axes == 1 ? (a == 0 ? 64 : 1)
-                                 : (a == 0   ? shape_.side0
-                                    : a == 1 ? shape_.side1
-                                             : 1);
+    side_[a] = in_tile_axes == 1 ? (a == 0 ? 64 : 1) : (a < 2 ? 8 : 1);
     tiles_[a] = (extent + side_[a] - 1) / side_[a];
     stride_[a] = stride;
     inverse_[a] = 1.0 / tiles_[a];
@@ -55,15 +24,11 @@ TileLayout::TileLayout(int dims, int extent, int in_tile_axes, int tile_width)
   tile_count_ = static_cast<std::uint64_t>(stride);
 }
 
-bool TileLayout::fits(int dims, int extent, int in_tile_axes, int tile_width) {
+bool TileLayout::fits(int dims, int extent, int in_tile_axes) {
   // Multiplied in double: 16 axes of 65,535 tiles would overflow any integer type.
   double tiles = 1.0;
-  const TileShape shape = two_axis_shape(extent, tile_width);
   for (int a = 0; a < dims; ++a) {
-    const int side = in_tile_axes == 1 ? (a == 0 ? 64 : 1)
-                                       : (a == 0   ? shape.side0
-                                          : a == 1 ? shape.side1
-                                                   : 1);
+    const int side = in_tile_axes == 1 ? (a == 0 ? 64 : 1) : (a < 2 ? 8 : 1);
     tiles *= static_cast<double>((extent + side - 1) / side);
   }
   return tiles <= static_cast<double>(kMaxTiles);
@@ -78,7 +43,7 @@ std::uint64_t TileLayout::tile_of(std::span<const int> c) const {
 
 int TileLayout::bit_of(std::span<const int> c) const {
   if (in_tile_ == 1) return c[0] % 64;
-  return c[0] % shape_.side0 + shape_.side0 * (c[1] % shape_.side1);
+  return c[0] % 8 + 8 * (c[1] % 8);
 }
 
 void TileLayout::cell(std::uint64_t tile, int bit, int* c) const {
@@ -87,8 +52,8 @@ void TileLayout::cell(std::uint64_t tile, int bit, int* c) const {
   if (in_tile_ == 1) {
     c[0] += bit;
   } else {
-    c[0] += bit % shape_.side0;
-    c[1] += bit / shape_.side0;
+    c[0] += bit % 8;
+    c[1] += bit / 8;
   }
 }
 

@@ -78,8 +78,7 @@ nlohmann::json distributed_json(const GridReport& report) {
 
 nlohmann::json dense_json(const dense::Figures& f) {
   nlohmann::json d;
-  d["tile"] =
-      f.in_tile_axes == 2 ? std::vector<int>{f.tile_side[0], f.tile_side[1]} : std::vector<int>{64};
+  d["tile"] = f.in_tile_axes == 2 ? std::vector<int>{8, 8} : std::vector<int>{64};
   d["tiles"] = f.tiles;
   d["free_states"] = f.free_states;
   d["reached"] = f.reached;
@@ -199,13 +198,10 @@ std::string to_summary(const GridReport& report) {
   if (op.pruning != "none") o << "  pruning    " << op.pruning << " (counts are of jump points)\n";
   if (report.dense) {
     const dense::Figures& f = *report.dense;
-    const std::string tile =
-        f.in_tile_axes == 2 ? std::to_string(f.tile_side[0]) + "x" + std::to_string(f.tile_side[1])
-                            : "64x1";
     std::snprintf(line, sizeof line,
                   "  dense      %s tiles, %llu %s, %d thread(s), %s per rank, %.4g of %.4g free "
                   "states reached\n",
-                  tile.c_str(), static_cast<unsigned long long>(f.levels),
+                  f.in_tile_axes == 2 ? "8x8" : "64x1", static_cast<unsigned long long>(f.levels),
                   op.algorithm == "bfs" ? "levels" : "cost classes", f.threads,
                   format_bytes(f.bytes_per_rank).c_str(), static_cast<double>(f.reached),
                   static_cast<double>(f.free_states));

@@ -60,12 +60,6 @@ int dense_threads(const GridSearchOptions& options, int ranks_sharing_memory) {
 
 namespace {
 
-// The dense engine's layout options: blocks dealt round (or contiguous slabs) and tile shape.
-void set_layout(dense::Query& q, const GridSearchOptions& o) {
-  q.block_layers = o.contiguous_slabs ? 0 : o.slab_layers > 0 ? o.slab_layers : -1;
-  q.tile_width = o.tile_width;
-}
-
 dense::Query dense_query(const GogField&, const GridProblem& problem, const GridSearchOptions& o,
                          const GridReport& report, int ranks_sharing_memory) {
   dense::Query q;
@@ -76,7 +70,7 @@ dense::Query dense_query(const GogField&, const GridProblem& problem, const Grid
   q.connectivity = problem.connectivity;
   q.threads = dense_threads(o, ranks_sharing_memory);
   q.keep_path = o.keep_path;
-  set_layout(q, o);
+  q.block_layers = o.contiguous_slabs ? 0 : o.slab_layers > 0 ? o.slab_layers : -1;
   q.memory_budget = dense_memory_budget(o, report);
   q.stop = Stop::after(o.time_limit_s, o.cancel);
   if (o.stop_when) q.stop.also_when(o.stop_when);
@@ -106,7 +100,9 @@ bool dense_fits(const GogField& field, const GridSearchOptions& options, const G
   q.connectivity = parse_connectivity(report.problem.connectivity);
   q.keep_path = options.keep_path;
   q.threads = dense_threads(options, 1);
-  set_layout(q, options);
+  q.block_layers = options.contiguous_slabs  ? 0
+                   : options.slab_layers > 0 ? options.slab_layers
+                                             : -1;
   return dense::planned_bytes(field, q, ranks) <= dense_memory_budget(options, report);
 }
 

@@ -25,9 +25,9 @@ const std::vector<GridEntry>& grid_entries() {
     const std::vector<std::string> worlds{"grid"};
     const std::vector<std::string> common{"heuristic", "connectivity", "max_states", "time_limit",
                                           "engine"};
-    const std::vector<std::string> exhaustive{"connectivity", "max_states",       "time_limit",
-                                              "engine",       "threads",          "memory_budget",
-                                              "slab_layers",  "contiguous_slabs", "tile_width"};
+    const std::vector<std::string> exhaustive{"connectivity", "max_states",      "time_limit",
+                                              "engine",       "threads",         "memory_budget",
+                                              "slab_layers",  "contiguous_slabs"};
     std::vector<std::string> weighted = common;
     weighted.insert(weighted.begin(), "weight");
     std::vector<std::string> with_jump_points = common;
@@ -160,9 +160,6 @@ void validate(const GridProblem& p, const GridSearchOptions& o) {
     throw InputError("--slab-layers and --contiguous-slabs choose different layouts: give one");
   if (o.slab_layers < 0)
     throw InputError("--slab-layers must be 0 (automatic) or a number of layers");
-  if (o.tile_width != 0 && (o.tile_width < 2 || o.tile_width > 32))
-    throw InputError("--tile-width must be 0 (8 x 8 tiles) or in [2, 32], got " +
-                     std::to_string(o.tile_width));
   if (o.threads < 0 || o.threads > 4096)
     throw InputError("--threads must be in [0, 4096], got " + std::to_string(o.threads));
 }

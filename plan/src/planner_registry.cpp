@@ -47,9 +47,6 @@ std::vector<ParamSpec> parameter_table() {
       flag("contiguous_slabs",
            "dense engine: one slab per rank and thread, balanced by free states, instead of "
            "dealt blocks"),
-      integer("tile_width", 0, 32, "0",
-              "dense engine: cells per tile along axis 0, rows of that many cells packed 64 / "
-              "width to a word (0: 8 x 8 tiles)"),
       integer("memory_budget", 0, 1.8e19, "0",
               "dense engine: bytes each process may use (0: what --max-states buys the sparse "
               "engine, by default half the available memory)"),

@@ -183,16 +183,14 @@ TEST(Cli, DenseEngineRunsBfsAndDijkstra) {
     const CliRun a = run(base);
     const CliRun d = run(base + " --engine dense --threads 2 --slab-layers 2");
     const CliRun c = run(base + " --engine dense --contiguous-slabs");
-    const CliRun p = run(base + " --engine dense --tile-width 16");
     const CliRun s = run(base + " --engine sparse");
-    for (const CliRun* r : {&a, &d, &c, &p, &s}) ASSERT_EQ(r->code, 0) << r->err;
+    for (const CliRun* r : {&a, &d, &c, &s}) ASSERT_EQ(r->code, 0) << r->err;
     const auto ja = nlohmann::json::parse(a.out), jd = nlohmann::json::parse(d.out),
-               jc = nlohmann::json::parse(c.out), jp = nlohmann::json::parse(p.out),
-               js = nlohmann::json::parse(s.out);
+               jc = nlohmann::json::parse(c.out), js = nlohmann::json::parse(s.out);
     EXPECT_EQ(ja["engine"], "dense") << algo;  // auto: the lattice fits
     EXPECT_EQ(js["engine"], "sparse") << algo;
     EXPECT_FALSE(js.contains("dense"));
-    for (const auto* j : {&ja, &jd, &jc, &jp}) {
+    for (const auto* j : {&ja, &jd, &jc}) {
       EXPECT_EQ((*j)["visited_map"], "dense_bitmap");
       for (const char* key : {"tile", "tiles", "free_states", "reached", "bytes_per_rank",
                               "bytes_total", "levels", "threads", "blocks", "block_layers"})
@@ -204,9 +202,6 @@ TEST(Cli, DenseEngineRunsBfsAndDijkstra) {
     EXPECT_EQ(jd["dense"]["block_layers"], 2);
     EXPECT_EQ(jd["dense"]["threads"], 2);
     EXPECT_EQ(jc["dense"]["block_layers"], 0);
-    EXPECT_EQ(ja["dense"]["tile"], nlohmann::json({8, 8}));
-    EXPECT_EQ(jp["dense"]["tile"], nlohmann::json({16, 4}));  // 13 = one row of 16, 4 of 4 rows
-    EXPECT_EQ(jp["dense"]["tiles"], 1 * 4 * 13 * 13);
     if (std::string(algo) == "dijkstra") {
       EXPECT_NEAR(ja["cost"], js["cost"], 1e-9);
     }
@@ -215,7 +210,6 @@ TEST(Cli, DenseEngineRunsBfsAndDijkstra) {
   expect_bad_input("grid --dims 2 --engine dense", "--engine dense runs --algo bfs and dijkstra");
   expect_bad_input("grid --dims 2 --algo bfs --slab-layers 2 --contiguous-slabs",
                    "--contiguous-slabs");
-  expect_bad_input("grid --dims 2 --algo bfs --tile-width 1", "--tile-width must be 0");
   // Over the budget: one line with the bytes needed and the budget, before anything runs.
   expect_bad_input("grid --dims 5 --extent 100 --algo bfs --engine dense --memory-budget 1000000",
                    "over the budget of 1 MB (1000000 bytes)");
@@ -350,7 +344,6 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
       {"grid --dims 2 --algo bfs", "--threads", "4097"},
       {"grid --dims 2 --algo bfs", "--memory-budget", "18446744073709551616"},
       {"grid --dims 2 --algo bfs", "--slab-layers", "65536"},
-      {"grid --dims 2 --algo bfs", "--tile-width", "33"},
       {"ompl", "--dims", "11"},
       {"ompl --dims 2", "--time", "3601"},
       {"ompl --dims 2", "--runs", "10001"},

@@ -1,8 +1,7 @@
 // The dense lattice engine against the independent oracle (textbook BFS and Dijkstra over
 // coordinate vectors) and against the sparse engine, from 1D to 8D, extents that do not fill
-// the 8 x 8 tiles, short rows packed several to a word (--tile-width), 1 to 4 threads (so
-// paths cross sub-slab faces), both connectivities; and its kernel, its slab plan, its budget
-// refusal and its progress line.
+// the 8 x 8 tiles, 1 to 4 threads (so paths cross sub-slab faces), both connectivities; and
+// its kernel, its slab plan, its budget refusal and its progress line.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -58,7 +57,7 @@ Instance random_instance(std::uint64_t seed, int d) {
 }
 
 dense::Result run_dense(const GogField& field, const Instance& in, dense::Algorithm a, int threads,
-                        Connectivity c = Connectivity::seed_pairs, int tile_width = 0) {
+                        Connectivity c = Connectivity::seed_pairs) {
   dense::Query q;
   q.start = in.start;
   q.goal = in.goal;
@@ -66,7 +65,6 @@ dense::Result run_dense(const GogField& field, const Instance& in, dense::Algori
   q.connectivity = c;
   q.threads = threads;
   q.keep_path = true;
-  q.tile_width = tile_width;
   dense::LocalTransport local;
   return dense::search(field, q, local);
 }
@@ -121,16 +119,6 @@ TEST_P(DenseOracle, MatchesTheOracleForEveryThreadCount) {
     expect_same(run_dense(field, in, dense::Algorithm::dijkstra, threads, c), dij,
                 what + " dijkstra, threads " + std::to_string(threads));
   }
-  // And whatever the tile shape: short rows packed several to a word, with and without the
-  // padding of a partly filled last tile (16 x 4; 5 x 12; 3 x 21, a row shorter than 8).
-  if (d >= 2)
-    for (int width : {16, 5, 3}) {
-      const std::string shape = " tile width " + std::to_string(width);
-      expect_same(run_dense(field, in, dense::Algorithm::bfs, 1 + width % 2, c, width), bfs,
-                  what + " bfs" + shape);
-      expect_same(run_dense(field, in, dense::Algorithm::dijkstra, 1 + width % 2, c, width), dij,
-                  what + " dijkstra" + shape);
-    }
 }
 
 INSTANTIATE_TEST_SUITE_P(SeedRule, DenseOracle,
@@ -177,12 +165,12 @@ TEST(DenseEngine, AgreesWithTheSparseEngineThroughThePlanner) {
 // The unrolled seed-rule kernel and the move table give the same targets and move counts for
 // every tile of a field (1D to 8D; rows and 8 x 8 tiles).
 template <int D, int K>
-void compare_kernels(int extent, std::uint64_t seed, int tile_width = 0) {
+void compare_kernels(int extent, std::uint64_t seed) {
   GogParams gp;
   gp.seed = seed;
   gp.density = 0.3;
   const GogField field(D, extent, gp);
-  const dense::TileLayout layout(D, extent, K, tile_width);
+  const dense::TileLayout layout(D, extent, K);
   const dense::FreeWindows windows(field, layout, 2);
   const dense::TableMoves table(layout, 2);
   std::int64_t W[kMaxDims];
@@ -220,11 +208,6 @@ TEST(DenseKernel, SeedRuleEqualsTheMoveTable) {
   compare_kernels<4, 2>(9, 8);
   compare_kernels<5, 2>(6, 9);
   compare_kernels<8, 2>(3, 10);
-  // Short rows packed several to a word: 16 x 4, 11 x 5, 4 x 16, 2 x 32.
-  compare_kernels<2, 2>(21, 11, 16);
-  compare_kernels<3, 2>(13, 12, 11);
-  compare_kernels<4, 2>(9, 13, 4);
-  compare_kernels<6, 2>(5, 14, 2);
 }
 
 // The kernel's move count is the number of legal moves out of the states given: counted here
@@ -260,28 +243,18 @@ TEST(DenseKernel, CountsEveryLegalMoveOnce) {
 
 // Tile masks agree with the field formula cell by cell, padding cells included (never free).
 TEST(DenseKernel, WindowMasksAreTheFieldFormula) {
-  for (const auto& [d, extent, k, width] :
-       std::vector<std::tuple<int, int, int, int>>{{1, 100, 1, 0},
-                                                   {2, 21, 2, 0},
-                                                   {2, 70, 1, 0},
-                                                   {3, 11, 2, 0},
-                                                   {5, 5, 2, 0},
-                                                   {2, 21, 2, 16},
-                                                   {3, 11, 2, 11},
-                                                   {4, 7, 2, 5}}) {
+  for (const auto& [d, extent, k] : std::vector<std::tuple<int, int, int>>{
+           {1, 100, 1}, {2, 21, 2}, {2, 70, 1}, {3, 11, 2}, {5, 5, 2}}) {
     GogParams gp;
     gp.seed = 17;
     const GogField field(d, extent, gp);
-    const dense::TileLayout layout(d, extent, k, width);
+    const dense::TileLayout layout(d, extent, k);
     const dense::FreeWindows windows(field, layout, 2);
-    // Bits past the tile's cells (a packed shape of fewer than 64) belong to no cell.
-    const int cells = k == 2 ? layout.shape().side0 * layout.shape().side1 : 64;
     for (std::uint64_t tile = 0; tile < layout.tile_count(); ++tile) {
       int t[kMaxDims];
       layout.tile_coords(tile, t);
       const dense::Word m = windows.free_mask(t);
-      ASSERT_EQ(cells == 64 ? 0 : m >> cells, 0u) << d << "D tile " << tile;
-      for (int bit = 0; bit < cells; ++bit) {
+      for (int bit = 0; bit < 64; ++bit) {
         int c[kMaxDims];
         layout.cell(tile, bit, c);
         bool inside = true;

@@ -48,9 +48,6 @@ struct Query {
   // thread, balanced by free states; < 0: about 4 blocks per thread, at least 4 layers each (the
   // default).
   int block_layers = -1;
-  // Cells per tile along axis 0 (rows of that many cells, 64 / width rows per word); 0: the
-  // default shape (TileShape::for_extent).
-  int tile_width = 0;
   bool keep_path = false;           // Dijkstra: record classes and walk the path back
                                     // (BFS always walks it, for its cost, and returns it)
   std::uint64_t memory_budget = 0;  // bytes this rank may use; 0 = no limit
@@ -61,8 +58,7 @@ struct Query {
 
 // What the engine did beyond the counters.
 struct Figures {
-  int in_tile_axes = 2;              // 2: tiles on axes 0 and 1; 1: rows of 64 on axis 0
-  int tile_side[2] = {8, 8};         // cells per tile along axes 0 and 1 (in_tile_axes == 2)
+  int in_tile_axes = 2;              // 2: 8 x 8 tiles on axes 0 and 1; 1: rows of 64 on axis 0
   std::uint64_t tiles = 0;           // tiles of the whole lattice
   std::uint64_t free_states = 0;     // free states of the whole lattice (exact)
   std::uint64_t reached = 0;         // states reached (BFS) or settled (Dijkstra)

@@ -39,7 +39,6 @@ class FreeWindows {
   // Where one tile's masks are read.
   struct At {
     const Word* row;  // mask(w, tau') = row[w * stride + tau']
-    const TileShape* shape;  // the layout's two-axis tile
     int tau;          // threshold minus the word axes' levels of this tile
     std::array<int, kMaxDims> minus{}, plus{};  // tau change of a step -1 / +1 along a word axis
   };
@@ -48,7 +47,6 @@ class FreeWindows {
     const std::size_t pos = k == 2 ? static_cast<std::size_t>(t[0] + 1) * (tiles1_ + 2) + (t[1] + 1)
                                    : static_cast<std::size_t>(t[0] + 1);
     at.row = table_.data() + pos * kWindows * range_ + tau_offset_;
-    at.shape = &layout_.shape();
     int tau = threshold_;
     for (int b = k; b < dims_; ++b) {
       const int* lv = levels_[b].data() + 1;  // lv[c] for c in -1 .. extent

@@ -1,11 +1,11 @@
 #pragma once
 // The lattice [0, extent)^d as 64-bit tiles: the dense engine's unit of work, one bit per
-// lattice state. Axis 0, and axis 1 from 2D up, lie inside the word: side0 x side1 cells (bit
-// x0' + side0 x1'; 8 x 8 unless the extent is small, see TileShape::for_extent), or a row of
-// 64 cells along axis 0 (1D, and 2D/3D lattices so wide that the window table would not fit;
-// see free_windows.hpp). Every further axis has one cell per tile, so a move along it changes
-// the word, not the bit. Tiles are numbered with axis 0 fastest; padding cells past the extent
-// exist in the last tile of an in-tile axis and are never free.
+// lattice state. Axis 0, and axis 1 from 2D up, lie inside the word: 8 x 8 cells (bit
+// x0' + 8 x1'), or a row of 64 cells along axis 0 (1D, and 2D/3D lattices so wide that the
+// 8 x 8 window table would not fit; see free_windows.hpp). Every further axis has one cell per
+// tile, so a move along it changes the word, not the bit. Tiles are numbered with axis 0
+// fastest; padding cells past the extent exist in the last tile of an in-tile axis and are
+// never free.
 //
 // Why square tiles and not rows along one axis: a BFS wavefront crosses a row of 64 cells over
 // about 32 levels, two cells at a time, so every word is touched ~32 times for 64 states; an
@@ -27,40 +27,19 @@ namespace hpcplan::dense {
 
 using Word = std::uint64_t;
 
-// The cells of a two-axis tile: side0 x side1 (side0 * side1 <= 64), bit x0 + side0 * x1, and
-// the masks and shift counts the kernels' in-tile moves need (tile_moves.hpp).
-struct TileShape {
-  int side0 = 8, side1 = 8;
-  Word column_lo = 0, column_hi = 0;  // the bits with x0 = 0 / x0 = side0 - 1
-  Word cells = 0;                     // the side0 * side1 bits in use
-  int last_row = 0;                   // bit of (0, side1 - 1): side0 * (side1 - 1)
-
-  static TileShape of(int side0, int side1);
-  // Rows of `width` cells, as many rows as fit a word (width 16: 16 x 4).
-  static TileShape rows_of(int width) { return of(width, 64 / width); }
-  // The default: 8 x 8 at every extent. Packing several short rows per word at small extents
-  // (6D extent 11: 16 x 4 or 11 x 5, three tiles a plane where 8 x 8 needs four, mostly
-  // padding) leaves 25% fewer tiles but each is crossed in more levels, and measured no faster
-  // (docs/PERFORMANCE.md, "Short rows packed per word"); --tile-width chooses it.
-  static TileShape for_extent(int extent);
-};
-
 class TileLayout {
  public:
   // Tile indices stay below this (2^50 tiles, 2^56 states: 8 PiB of bits, beyond any machine's
   // memory, and far below 2^53, where tile_coords' double reciprocal stays exact).
   static constexpr std::uint64_t kMaxTiles = std::uint64_t{1} << 50;
   // Whether the lattice has at most kMaxTiles tiles (the constructor's precondition).
-  static bool fits(int dims, int extent, int in_tile_axes, int tile_width = 0);
-  // in_tile_axes: 1 (rows of 64 along axis 0) or 2 (tiles on axes 0 and 1, dims >= 2: rows of
-  // tile_width cells, TileShape::rows_of; 0: TileShape::for_extent).
-  TileLayout(int dims, int extent, int in_tile_axes, int tile_width = 0);
+  static bool fits(int dims, int extent, int in_tile_axes);
+  // in_tile_axes: 1 (rows of 64 along axis 0) or 2 (8 x 8 on axes 0 and 1, dims >= 2).
+  TileLayout(int dims, int extent, int in_tile_axes);
 
   int dims() const { return dims_; }
   int extent() const { return extent_; }
   int in_tile_axes() const { return in_tile_; }
-  // The two-axis tile's cells (in_tile_axes() == 2).
-  const TileShape& shape() const { return shape_; }
   int side(int axis) const { return side_[axis]; }    // cells per tile along the axis
   int tiles(int axis) const { return tiles_[axis]; }  // tiles along the axis
   std::int64_t stride(int axis) const { return stride_[axis]; }
@@ -97,12 +76,15 @@ class TileLayout {
   int dims_;
   int extent_;
   int in_tile_;
-  TileShape shape_;
   std::array<int, kMaxDims> side_{};
   std::array<int, kMaxDims> tiles_{};
   std::array<std::int64_t, kMaxDims> stride_{};
   std::array<double, kMaxDims> inverse_{};
   std::uint64_t tile_count_ = 0;
 };
+
+// Bits of a tile with in-tile coordinate 0 (lo) or side - 1 (hi) along axis 0 of an 8-wide tile.
+inline constexpr Word kColumn0 = 0x0101010101010101ULL;
+inline constexpr Word kColumn7 = 0x8080808080808080ULL;
 
 }  // namespace hpcplan::dense

@@ -28,26 +28,23 @@
 namespace hpcplan::dense {
 
 // Shifts of source bits to target bits along in-tile axis 0 or 1, in the tile (in) and into
-// the neighbour tile (out). K = 2: side0 x side1 tiles (bit x0 + side0 x1; the shape is the
-// layout's, read from FreeWindows::At); K = 1: rows of 64 on axis 0. Source bits lie in the
-// shape's cells, and so do the results: a step off the last row is masked, not wrapped.
+// the neighbour tile (out). K = 2: 8 x 8 tiles (bit x0 + 8 x1); K = 1: rows of 64 on axis 0.
 template <int K>
 struct InTileShift {
-  static constexpr Word in(const TileShape& s, int axis, int sign, Word x) {
+  static constexpr Word in(int axis, int sign, Word x) {
     if constexpr (K == 1) {
       return sign > 0 ? x << 1 : x >> 1;
     } else {
-      if (axis == 0) return sign > 0 ? (x & ~s.column_hi) << 1 : (x & ~s.column_lo) >> 1;
-      return sign > 0 ? (x << s.side0) & s.cells : x >> s.side0;
+      if (axis == 0) return sign > 0 ? (x & ~kColumn7) << 1 : (x & ~kColumn0) >> 1;
+      return sign > 0 ? x << 8 : x >> 8;
     }
   }
-  static constexpr Word out(const TileShape& s, int axis, int sign, Word x) {
+  static constexpr Word out(int axis, int sign, Word x) {
     if constexpr (K == 1) {
       return sign > 0 ? x >> 63 : x << 63;
     } else {
-      if (axis == 0)
-        return sign > 0 ? (x & s.column_hi) >> (s.side0 - 1) : (x & s.column_lo) << (s.side0 - 1);
-      return sign > 0 ? x >> s.last_row : (x << s.last_row) & s.cells;
+      if (axis == 0) return sign > 0 ? (x & kColumn7) >> 7 : (x & kColumn0) << 7;
+      return sign > 0 ? x >> 56 : x << 56;
     }
   }
 };
@@ -70,7 +67,6 @@ struct SeedMoves {
                                                             int stride, const std::int64_t* W,
                                                             Out&& out) {
     const int tau = at.tau;
-    const TileShape sh = *at.shape;  // copied: the compiler keeps it in registers
     // The nine windows' rows of this tile, so a mask is one indexed load.
     const Word* win[FreeWindows::kWindows];
     for (int w = 0; w < FreeWindows::kWindows; ++w) win[w] = at.row + w * stride;
@@ -94,8 +90,8 @@ struct SeedMoves {
         const int sg = s ? 1 : -1;
         const Word m = f & pin[a][s];
         gen += std::popcount(m);
-        self_u |= Shift::in(sh, a, sg, m);
-        face_u[a][s] |= Shift::out(sh, a, sg, m);
+        self_u |= Shift::in(a, sg, m);
+        face_u[a][s] |= Shift::out(a, sg, m);
       }
     // Two-axis moves inside the tile's axes (8 x 8 tiles: axes 0 and 1).
     if constexpr (K == 2) {
@@ -107,11 +103,11 @@ struct SeedMoves {
           const Word m = f & pin[0][s0] & pin[1][s1] & P(FreeWindows::window(g0, g1), tau);
           if (!m) continue;
           gen += std::popcount(m);
-          const Word i0 = Shift::in(sh, 0, g0, m), x0 = Shift::out(sh, 0, g0, m);
-          self_d |= Shift::in(sh, 1, g1, i0);
-          face_d[1][s1] |= Shift::out(sh, 1, g1, i0);
-          face_d[0][s0] |= Shift::in(sh, 1, g1, x0);
-          if (const Word c = Shift::out(sh, 1, g1, x0)) out(g0 * W[0] + g1 * W[1], c, kDiag);
+          const Word i0 = Shift::in(0, g0, m), x0 = Shift::out(0, g0, m);
+          self_d |= Shift::in(1, g1, i0);
+          face_d[1][s1] |= Shift::out(1, g1, i0);
+          face_d[0][s0] |= Shift::in(1, g1, x0);
+          if (const Word c = Shift::out(1, g1, x0)) out(g0 * W[0] + g1 * W[1], c, kDiag);
         }
     }
     // Word axes: the neighbour tile's own mask (same bits), tau moved by the level change.
@@ -145,8 +141,8 @@ struct SeedMoves {
             const Word q = m & pin[a][sa] & P(axis_window(a, ga), tb);
             if (!q) continue;
             gen += std::popcount(q);
-            face_d[b][sb] |= Shift::in(sh, a, ga, q);
-            if (const Word c = Shift::out(sh, a, ga, q)) out(db + ga * W[a], c, kDiag);
+            face_d[b][sb] |= Shift::in(a, ga, q);
+            if (const Word c = Shift::out(a, ga, q)) out(db + ga * W[a], c, kDiag);
           }
           // With a later word axis: both neighbours and the target are whole tiles.
 #pragma GCC unroll 16
@@ -210,9 +206,9 @@ class TableMoves {
       for (int j = 0; j < mv.in_steps; ++j) {
         const int a = mv.in_axis[j], g = mv.in_sign[j];
         for (int p = 0; p < parts; ++p) {
-          part[parts + p] = Shift::out(*at.shape, a, g, part[p]);
+          part[parts + p] = Shift::out(a, g, part[p]);
           delta[parts + p] = delta[p] + g * W[a];
-          part[p] = Shift::in(*at.shape, a, g, part[p]);
+          part[p] = Shift::in(a, g, part[p]);
         }
         parts *= 2;
       }

@@ -63,8 +63,6 @@ struct GridSearchOptions {
   // thread), or one contiguous slab per rank and thread balanced by free states.
   int slab_layers = 0;
   bool contiguous_slabs = false;
-  // Cells per tile along axis 0 (0: 8 x 8 tiles; w: rows of w cells, 64 / w rows a word).
-  int tile_width = 0;
 };
 
 // Throws InputError for anything a user could have got wrong.
