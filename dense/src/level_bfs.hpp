@@ -6,9 +6,11 @@
 // get the next level's code; the first new bits of a tile put it on the next frontier, with the
 // tile's reached bits before the level, so the next level's frontier word is "reached now, not
 // then"), targets in the next block either side go to an outbox for its owner. After a barrier
-// the master thread swaps the rank's outboxes with the neighbouring ranks; after another, each
-// thread applies what the other threads and ranks sent it. One reduction per level decides:
-// goal reached, nothing left (no_path), or a stop.
+// (and, with other ranks, the master thread's swap of the rank's outboxes with the neighbouring
+// ranks and another barrier) each thread applies what the other threads and ranks sent it and
+// publishes its level's counts. One decision per level: goal reached, nothing left (no_path),
+// or a stop; taken by every thread from the published counts after one more barrier on one
+// rank, by one reduction over the ranks otherwise.
 #include <limits>
 
 #include "engine_common.hpp"
@@ -68,13 +70,18 @@ class LevelBfs {
     std::uint64_t reached_total = 1, peak_level = 1;
     Status status = Status::no_path;
     bool solved = trivial;
-    bool done = trivial;
     HaloSwap<Entry> halo;
     const std::uint64_t budget = q_.memory_budget;
     std::uint64_t list_peak = 0;
 
     int team = T;
     bool failed = false;
+    // Whether this rank trades with others: then the master thread runs the halo swap and the
+    // ranks' reduction, each between barriers (four a level). On one rank every thread reads
+    // what the others published and takes the same decision itself (two barriers a level):
+    // fewer points where a thread on a time-shared core can hold up the others.
+    const bool alone = tr_.ranks() == 1;
+    Decision shared;  // the ranks' decision, from the master thread (not alone)
 #pragma omp parallel num_threads(T) if (T > 1)
     {
       const int id = omp_get_thread_num();
@@ -82,9 +89,9 @@ class LevelBfs {
       if (omp_get_num_threads() != T) {
 #pragma omp master
         team = omp_get_num_threads();
-      } else
-        while (!done) {
-          const int next_code = static_cast<int>((level + 1) % 3) + 1;
+      } else if (!trivial)
+        for (std::uint64_t lvl = 0, reached = reached_total, peak = peak_level;;) {
+          const int next_code = static_cast<int>((lvl + 1) % 3) + 1;
           const Word c0 = next_code & 1 ? ~Word{0} : 0, c1 = next_code & 2 ? ~Word{0} : 0;
           try {
             // The frontier's words: reached now, not before the level that reached them.
@@ -101,17 +108,21 @@ class LevelBfs {
             }
             if (budget && list_bytes(me) * T + fixed > budget)
               me.stop = std::max(me.stop, kStopBudget);
+            // The query's own condition, on the master thread only (Stop's contract).
+            if (id == 0) poll_stop(q_.stop, me);
           } catch (...) {
             caught(me);
           }
 #pragma omp barrier
+          if (!alone) {
 #pragma omp master
-          try {
-            halo.run(tr_, slabs_, threads_, inbox_);
-          } catch (...) {
-            caught(threads_.front());
-          }
+            try {
+              halo.run(tr_, slabs_, threads_, inbox_);
+            } catch (...) {
+              caught(threads_.front());
+            }
 #pragma omp barrier
+          }
           try {
             for (const Thread& t : threads_)
               for (const Entry& e : t.out_local[id])
@@ -121,51 +132,63 @@ class LevelBfs {
           } catch (...) {
             caught(me);
           }
+          // This level's summary, in the slot of the level's parity: the other threads read
+          // it after the next barrier, and this thread writes that slot again only two levels
+          // on, after every thread has passed the next level's first barrier.
+          Published& pub = me.published[lvl & 1];
+          pub = {me.fresh, me.next.size(), list_bytes(me), me.goal_hit, me.stop};
 #pragma omp barrier
+          Decision d;
+          if (alone) {
+            d = decide(lvl & 1);
+          } else {
+#pragma omp master
+            {
+              try {
+                shared = decide(lvl & 1);
+                // One reduction over the ranks: new states, next frontier entries, goal, stop.
+                std::uint64_t sums[2] = {shared.fresh, shared.next};
+                std::uint64_t maxes[2] = {shared.goal ? 1u : 0u,
+                                          static_cast<std::uint64_t>(shared.stop)};
+                tr_.sum(sums);
+                tr_.max(maxes);
+                shared = {sums[0], sums[1], shared.lists, maxes[0] != 0,
+                          static_cast<int>(maxes[1])};
+              } catch (...) {
+                caught(threads_.front());
+                shared.stop = kStopFailed;  // the reduction itself failed
+              }
+            }
+#pragma omp barrier
+            d = shared;
+          }
+          ++lvl;
+          reached += d.fresh;
+          peak = std::max(peak, d.fresh);
+          const bool end = d.stop || d.goal || d.next == 0;
 #pragma omp master
           {
-            try {
-              // One reduction: new states, next frontier entries, goal reached, stop.
-              poll_stop(q_.stop, threads_.front());
-              std::uint64_t sums[2] = {0, 0};
-              std::uint64_t maxes[2] = {0, 0};
-              std::uint64_t lists = 0;
-              for (const Thread& t : threads_) {
-                sums[0] += t.fresh;
-                sums[1] += t.next.size();
-                maxes[0] |= t.goal_hit ? 1 : 0;
-                maxes[1] = std::max<std::uint64_t>(maxes[1], t.stop);
-                lists += list_bytes(t);
-              }
-              list_peak = std::max(list_peak, lists);
-              tr_.sum(sums);
-              tr_.max(maxes);
-              ++level;
-              reached_total += sums[0];
-              peak_level = std::max(peak_level, sums[0]);
-              if (maxes[1] == kStopFailed) {
-                failed = true;
-                done = true;
-              } else if (maxes[0]) {
-                solved = true;
-                done = true;
-              } else if (maxes[1]) {
-                status = stopped_status(maxes[1]);
-                done = true;
-              } else if (sums[1] == 0) {
-                status = Status::no_path;
-                done = true;
-              }
-              progress.update("level", static_cast<double>(level), reached_total);
-            } catch (...) {
-              caught(threads_.front());
-            }
-            if (threads_.front().error) {  // the reduction itself failed
+            level = lvl;
+            reached_total = reached;
+            peak_level = peak;
+            list_peak = std::max(list_peak, d.lists);
+            if (d.stop == kStopFailed)
               failed = true;
-              done = true;
+            else if (d.goal)
+              solved = true;
+            else if (d.stop)
+              status = stopped_status(static_cast<std::uint64_t>(d.stop));
+            else if (d.next == 0)
+              status = Status::no_path;
+            try {
+              progress.update("level", static_cast<double>(lvl), reached);
+            } catch (...) {
+              caught(me);  // ends the run at the next level's decision
             }
           }
-#pragma omp barrier
+          if (end) break;
+          // Every read of this thread's outboxes (the other threads' apply phase, the master's
+          // halo swap) happened before the last barrier.
           me.out_down.clear();
           me.out_up.clear();
           for (auto& box : me.out_local) box.clear();
@@ -174,7 +197,6 @@ class LevelBfs {
           me.next.clear();
         }
     }
-
     rethrow_failure(threads_, team, failed);
     Counters& k = res.counters;
     std::uint64_t local[2] = {0, 0};
@@ -211,6 +233,31 @@ class LevelBfs {
   }
 
  private:
+  // What a thread tells the others at the end of a level, and what they decide from it.
+  struct Published {
+    std::uint64_t fresh = 0, next = 0, lists = 0;
+    bool goal = false;
+    int stop = 0;
+  };
+  struct Decision {
+    std::uint64_t fresh = 0, next = 0, lists = 0;  // sums over the threads
+    bool goal = false;
+    int stop = 0;  // the highest stop code
+  };
+  // The threads' summaries of one level (slot = the level's parity), combined.
+  Decision decide(int slot) const {
+    Decision d;
+    for (const Thread& t : threads_) {
+      const Published& p = t.published[slot];
+      d.fresh += p.fresh;
+      d.next += p.next;
+      d.lists += p.lists;
+      d.goal = d.goal || p.goal;
+      d.stop = std::max(d.stop, p.stop);
+    }
+    return d;
+  }
+
   struct alignas(64) Thread {  // a cache line apart: each thread writes its own counters
     std::exception_ptr error;  // the first exception of this thread's work (caught())
     std::vector<Entry> cur, next;
@@ -220,7 +267,8 @@ class LevelBfs {
     int id = 0;
     std::uint64_t expanded = 0, generated = 0, fresh = 0;
     bool goal_hit = false;
-    int stop = 0;  // kStop* code, the highest wins
+    int stop = 0;            // kStop* code, the highest wins
+    Published published[2];  // by level parity
   };
 
   Word* code_words(const Block& b, std::uint64_t tile) {
