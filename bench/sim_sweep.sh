@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Seed 000's benchmark sweep: every (particle count, scenario, planner) cell runs TRIALS runs of
-# `hpcplan sim`, one per-run CSV and one per-replan log per cell. The seed's grid is 18 particle
-# counts (500, 2,000, ..., 24,500 and 25,000) x 3 scenarios x its 2 planners x 5 trials = 540
-# runs; D* Lite is added here (810 runs).
+# Seed 000's benchmark sweep: every (particle count, scenario, planner, pacing, controller) cell
+# runs TRIALS runs of `hpcplan sim`, one per-run CSV and one per-replan log per cell. The seed's
+# grid is 18 particle counts (500, 2,000, ..., 24,500 and 25,000) x 3 scenarios x its 2 planners
+# x 5 trials = 540 runs; D* Lite is added here (810 runs per pacing and controller).
 #
 # Resumable: a cell whose CSV exists is skipped (the CLI writes it atomically at the cell's end),
 # so rerunning an interrupted sweep finishes it. Progress and an estimate of the time left go to
@@ -12,9 +12,12 @@
 #        bench/sim_sweep.sh --count        how many cells the settings give
 #        bench/sim_sweep.sh --cell K OUT   cell K only (0-based: slurm/sim_sweep.sbatch's task)
 # Settings (environment, defaults): PARTICLES (the seed's 18 counts), SCENARIOS ("particles
-# static dynamic"), ALGOS ("astar rrtstar dstar_lite"), TRIALS (5), SEED (1), PACE (realtime: the
-# seed's, planning latency costs simulated time; lockstep: deterministic and faster than real
-# time), MAX_SIM_S (300), THREADS (2), BIN (build/bin/hpcplan).
+# static dynamic"), ALGOS ("astar rrtstar dstar_lite"), TRIALS (5), SEED (1), PACES (one or
+# both of realtime and lockstep; default: PACE, else realtime. realtime: the seed's, planning
+# latency costs simulated time; lockstep: deterministic and faster than real time), CONTROLLERS
+# ("seed"; "seed reactive" runs both), MAX_SIM_S (300), THREADS (2), BIN (build/bin/hpcplan).
+# Cells are named SCENARIO_ALGO_N_PACE_CONTROLLER, so one folder holds every pacing and
+# controller and resuming it completes each of them.
 # The dam break (beyond the seed; water, so far costlier per particle) is its own sweep, e.g.
 #   SCENARIOS=dambreak PARTICLES="250 2000 6750" MAX_SIM_S=10 bench/sim_sweep.sh results/sim/dam
 # Aggregate with: python3 scripts/sim_report.py OUT [more result folders...]
@@ -26,29 +29,37 @@ default_particles+=" 25000"
 read -r -a particles <<< "${PARTICLES:-$default_particles}"
 read -r -a scenarios <<< "${SCENARIOS:-particles static dynamic}"
 read -r -a algos <<< "${ALGOS:-astar rrtstar dstar_lite}"
-trials=${TRIALS:-5} seed=${SEED:-1} pace=${PACE:-realtime} max_sim=${MAX_SIM_S:-300}
+read -r -a paces <<< "${PACES:-${PACE:-realtime}}"
+read -r -a controllers <<< "${CONTROLLERS:-seed}"
+trials=${TRIALS:-5} seed=${SEED:-1} max_sim=${MAX_SIM_S:-300}
 threads=${THREADS:-2}
 bin=${BIN:-$root/build/bin/hpcplan}
 die() { echo "sim_sweep: error: $*" >&2; exit 2; }
-cells=$((${#particles[@]} * ${#scenarios[@]} * ${#algos[@]}))
-((cells > 0)) || die "no cells: PARTICLES, SCENARIOS and ALGOS must not be empty"
+for p in "${paces[@]}"; do [[ $p == realtime || $p == lockstep ]] || die "unknown pace $p"; done
+for c in "${controllers[@]}"; do [[ $c == seed || $c == reactive ]] || die "unknown controller $c"; done
+cells=$((${#particles[@]} * ${#scenarios[@]} * ${#algos[@]} * ${#paces[@]} * ${#controllers[@]}))
+((cells > 0)) || die "no cells: PARTICLES, SCENARIOS, ALGOS, PACES and CONTROLLERS must not be empty"
 
-# Cell k: particle counts outermost (small fluids first), then scenarios, then planners.
+# Cell k: particle counts outermost (small fluids first), then scenarios, planners, pacings and
+# controllers (innermost: the two controllers of a setting run one after the other).
 cell_of() {
-  local k=$1 na=${#algos[@]} ns=${#scenarios[@]}
-  algo=${algos[$((k % na))]}
-  scenario=${scenarios[$((k / na % ns))]}
-  n=${particles[$((k / na / ns))]}
+  local k=$1 nc=${#controllers[@]} np=${#paces[@]} na=${#algos[@]} ns=${#scenarios[@]}
+  controller=${controllers[$((k % nc))]}
+  pace=${paces[$((k / nc % np))]}
+  algo=${algos[$((k / nc / np % na))]}
+  scenario=${scenarios[$((k / nc / np / na % ns))]}
+  n=${particles[$((k / nc / np / na / ns))]}
 }
 
 run_cell() {  # run_cell K OUT: prints "ran" or "skipped"
   local k=$1 out=$2
   cell_of "$k"
-  local name="${scenario}_${algo}_${n}"
+  local name="${scenario}_${algo}_${n}_${pace}_${controller}"
   if [[ -f $out/cells/$name.csv ]]; then echo skipped; return; fi
   mkdir -p "$out/cells"
   "$bin" sim --particles "$n" --scenario "$scenario" --algo "$algo" --runs "$trials" \
-    --seed "$seed" --pace "$pace" --max-sim-s "$max_sim" --threads "$threads" \
+    --seed "$seed" --pace "$pace" --controller "$controller" --max-sim-s "$max_sim" \
+    --threads "$threads" \
     --replan-log "$out/cells/$name.replans.csv" --output "$out/cells/$name.json" \
     --csv "$out/cells/$name.csv" > /dev/null 2> "$out/cells/$name.log" ||
     die "cell $k ($name) failed: $(tail -1 "$out/cells/$name.log")"
@@ -63,13 +74,13 @@ case ${1:-} in
     [[ -x $bin ]] || die "$bin not found: build first (bash scripts/build.sh)"
     run_cell "$2" "$3" > /dev/null
     cell_of "$2"
-    echo "sim_sweep: cell $2 ($scenario $algo $n particles) done in $3/cells"
+    echo "sim_sweep: cell $2 ($scenario $algo $n particles, $pace, $controller) done in $3/cells"
     exit 0 ;;
 esac
 out=${1:-$root/results/sim/local}
 [[ -x $bin ]] || die "$bin not found: build first (bash scripts/build.sh)"
 mkdir -p "$out"
-echo "sim_sweep: $cells cells x $trials trials, pace $pace, into $out" >&2
+echo "sim_sweep: $cells cells x $trials trials, pacing ${paces[*]}, controller ${controllers[*]}, into $out" >&2
 start=$SECONDS ran=0
 for ((k = 0; k < cells; k++)); do
   t0=$SECONDS
@@ -79,10 +90,12 @@ for ((k = 0; k < cells; k++)); do
     ran=$((ran + 1))
     per=$(((SECONDS - start) / ran))
     left=$(((cells - k - 1) * per))
-    printf 'sim_sweep: [%d/%d] %s %s %d: %ds; about %dh%02dm left\n' $((k + 1)) "$cells" \
-      "$scenario" "$algo" "$n" $((SECONDS - t0)) $((left / 3600)) $((left % 3600 / 60)) >&2
+    printf 'sim_sweep: [%d/%d] %s %s %d %s %s: %ds; about %dh%02dm left\n' $((k + 1)) "$cells" \
+      "$scenario" "$algo" "$n" "$pace" "$controller" $((SECONDS - t0)) $((left / 3600)) \
+      $((left % 3600 / 60)) >&2
   else
-    printf 'sim_sweep: [%d/%d] %s %s %d: already done\n' $((k + 1)) "$cells" "$scenario" "$algo" "$n" >&2
+    printf 'sim_sweep: [%d/%d] %s %s %d %s %s: already done\n' $((k + 1)) "$cells" "$scenario" \
+      "$algo" "$n" "$pace" "$controller" >&2
   fi
 done
 echo "sim_sweep: done; report: python3 scripts/sim_report.py $out" >&2

@@ -24,7 +24,7 @@ namespace {
 
 struct SimArgs {
   sim::SimOptions o;
-  std::string scenario = "particles", pace = "lockstep";
+  std::string scenario = "particles", pace = "lockstep", controller = "seed";
   int threads = 0;
   std::string csv, replan_log, trajectory, output, vtk_dir;
   std::uint64_t every = 5;
@@ -36,6 +36,7 @@ int run(SimArgs& a) {
   sim::SimOptions& o = a.o;
   o.scenario = sph::parse_scenario(a.scenario);
   o.pace = sim::parse_pace(a.pace);
+  o.controller = sim::parse_controller(a.controller);
   sim::validate(o);
   const std::uint64_t need = sph::estimated_bytes(sim::fluid_options(o, o.seed));
   const double budget = a.memory_mb > 0.0 ? a.memory_mb * 1048576.0
@@ -71,7 +72,7 @@ int run(SimArgs& a) {
   };
   std::function<void(const sim::FrameView&)> on_frame = [&](const sim::FrameView& v) {
     if (!a.trajectory.empty())
-      trajectory.push_back({v.run, v.frame, v.fluid->time, v.robot, v.goal});
+      trajectory.push_back({v.run, v.frame, v.fluid->time, v.robot, v.goal, v.clearance});
     if (!a.vtk_dir.empty() && (v.frame % a.every == 0 || v.last)) write_vtk(v);
   };
   const Stopwatch clock;
@@ -126,6 +127,19 @@ Action register_sim_command(CLI::App& app) {
                   "lockstep (deterministic, plans applied after --lockstep-delay frames) | "
                   "realtime (planner thread, frames of at least 0.02 s wall)")
       ->capture_default_str();
+  cmd->add_option("--controller", a.controller,
+                  "seed (steer along the plan, the seed's) | reactive (keep clear of the moving "
+                  "particles between replans)")
+      ->capture_default_str();
+  add_number(cmd, "--robot-radius", o.safety.robot_radius,
+             "The robot's radius for contacts and clearance (particles: the seed's 0.05)", 0, 1e3)
+      ->capture_default_str();
+  add_number(cmd, "--reactive-horizon", o.reactive.horizon_s,
+             "reactive: seconds the particles' motion is extrapolated", 1e-3, 1e3)
+      ->capture_default_str();
+  add_number(cmd, "--reactive-margin", o.reactive.margin, "reactive: clearance kept beyond contact",
+             0, 1e3)
+      ->capture_default_str();
   add_number(cmd, "--replan-every", o.replan_every, "Frames between replans", 1, 1'000'000)
       ->capture_default_str();
   add_number(cmd, "--lockstep-delay", o.lockstep_delay,
@@ -160,7 +174,8 @@ Action register_sim_command(CLI::App& app) {
              "Refuse runs needing more memory (default: half the available)", 1, 1e9);
   cmd->add_option("--csv", a.csv, "Write one row per run (seed 000's columns first)");
   cmd->add_option("--replan-log", a.replan_log, "Write one row per replan");
-  cmd->add_option("--trajectory", a.trajectory, "Write the robot and goal after every frame");
+  cmd->add_option("--trajectory", a.trajectory,
+                  "Write the robot, the goal and the robot's clearance after every frame");
   cmd->add_option("--vtk", a.vtk_dir,
                   "Write VTK for ParaView: DIR/run_<n>/fluid.pvd (fluid, boxes, robot, goal, plan, "
                   "trail)");

@@ -13,6 +13,13 @@ Tables (the paper's numbering):
   IV   path length over successful replans, the paper's failure-weighted length, divergence
 Figures: 1 time-to-goal distributions, 2 plan-time distributions, 3 scaling with particle
 count (time to goal, mean plan time, failed replan rate), 4 the winner of each metric.
+These come from the seed's controller, once per pacing present (figure names get a _realtime
+suffix when lockstep runs are there too).
+
+Beyond the paper: contacts (sim/safety.hpp): per scenario, planner and pacing, the frames in
+contact with the seed's controller and with the reactive layer, their times to goal and the
+ratio, and figure 5 (fig5_contacts.png): frames in contact against particle count, per planner,
+pacing and controller.
 """
 import argparse
 import csv
@@ -54,15 +61,19 @@ def load(paths):
             rows = list(csv.DictReader(fh))
         if not rows or "time_to_goal_s" not in rows[0]:
             continue  # another kind of CSV in the folder
+        for r in rows:
+            r.setdefault("controller", "seed")  # CSVs from before the reactive layer
+            if r["controller"] in ("", None):
+                r["controller"] = "seed"
         runs += rows
         log = f[:-4] + ".replans.csv"
         if os.path.exists(log):
             with open(log) as fh:
                 rp = list(csv.DictReader(fh))
-            sc = rows[0]["scenario"]
-            n = rows[0]["particle_count"]
+            first = rows[0]
             for r in rp:
-                r["scenario"], r["particle_count"] = sc, n
+                for k in ("scenario", "particle_count", "pace", "controller"):
+                    r[k] = first.get(k, "seed" if k == "controller" else "")
             replans += rp
     if not runs:
         sys.exit("sim_report: error: no per-run CSV of hpcplan sim found")
@@ -101,6 +112,110 @@ def main():
     runs, replans = load(a.results)
     out = a.out or (a.results[0] if os.path.isdir(a.results[0]) else os.path.dirname(a.results[0]) or ".")
     os.makedirs(out, exist_ok=True)
+    md = []
+    paces = sorted({r["pace"] for r in runs})
+    seed_paces = [p for p in paces if any(r["pace"] == p and r["controller"] == "seed" for r in runs)]
+    for i, pace in enumerate(seed_paces):
+        seed_tables([r for r in runs if r["pace"] == pace and r["controller"] == "seed"],
+                    [r for r in replans if r["pace"] == pace and r["controller"] == "seed"],
+                    out, "" if i == 0 else f"_{pace}", md)
+    contact_tables(runs, out, md)
+    md.append(f"\nFigures: {', '.join(sorted(n for n in os.listdir(out) if n.startswith('fig')))} in {out}.\n")
+    text = "\n".join(md)
+    tmp = os.path.join(out, "sim_report.md.tmp")
+    with open(tmp, "w") as fh:
+        fh.write(text)
+    os.replace(tmp, os.path.join(out, "sim_report.md"))
+    print(text)
+
+
+def contact_tables(runs, out, md):
+    """Frames in contact per setting, and the reactive layer against the seed's controller."""
+    if not runs or "contact_frames" not in runs[0]:
+        return
+    lab = lambda x: LABEL.get(x, x)  # noqa: E731
+    algos = sorted({r["algorithm"] for r in runs}, key=lambda x: list(LABEL).index(x) if x in LABEL else 99)
+    scenarios = [s for s in SCENARIOS if any(r["scenario"] == s for r in runs)]
+    paces = sorted({r["pace"] for r in runs})
+    controllers = [c for c in ("seed", "reactive") if any(r["controller"] == c for r in runs)]
+    radius = {r.get("robot_radius", "") for r in runs}
+
+    def pooled(rs):  # frames in contact over every frame of these runs
+        frames = sum(int(r["frames"]) for r in rs)
+        return sum(int(r["contact_frames"]) for r in rs) / frames if frames else math.nan
+
+    def ttg(rs):
+        ok = [f(r["time_to_goal_s"]) for r in rs if r["success"] == "1"]
+        return statistics.fmean(ok) if ok else math.nan
+
+    md.append("\n## Contacts: does the robot touch the fluid? (beyond the paper)\n")
+    md.append("Frames in contact: frames whose clearance (robot ball of radius 0.05 against particle "
+              "balls of 0.05 and the boxes, on the physics frame) is negative, over every frame of "
+              "the runs; p95: the 95th percentile of the runs' own rates; contacts: entries into "
+              "contact per run. Time to goal: successful runs, mean (s).\n")
+    head = "| Scenario | Planner | Pacing | " + " | ".join(
+        f"{c}: frames in contact (p95) | {c}: contacts/run | {c}: max overlap | {c}: time to goal | {c}: success"
+        for c in controllers)
+    if len(controllers) == 2:
+        head += " | time to goal, reactive / seed |"
+    else:
+        head += " |"
+    md.append(head)
+    md.append("|" + "---|" * (3 + 5 * len(controllers) + (len(controllers) == 2)))
+    for pace in paces:
+        for x in algos:
+            for s in scenarios + ["all"]:
+                cells, t = [], {}
+                for c in controllers:
+                    rs = [r for r in runs if r["pace"] == pace and r["algorithm"] == x and
+                          r["controller"] == c and (s == "all" or r["scenario"] == s)]
+                    if not rs:
+                        cells += ["–"] * 5
+                        t[c] = math.nan
+                        continue
+                    rates = [int(r["contact_frames"]) / int(r["frames"]) for r in rs if int(r["frames"])]
+                    t[c] = ttg(rs)
+                    cells += [f"{fmt(100 * pooled(rs), 2)}% ({fmt(100 * quantile(rates, .95), 1)}%)",
+                              fmt(statistics.fmean(int(r["contacts"]) for r in rs), 2),
+                              fmt(max(f(r["max_overlap"]) for r in rs), 3), fmt(t[c]),
+                              f"{sum(r['success'] == '1' for r in rs)}/{len(rs)}"]
+                if all(c == "–" for c in cells):
+                    continue
+                row = f"| {NAMES.get(s, 'All scenarios')} | {lab(x)} | {pace} | " + " | ".join(cells)
+                if len(controllers) == 2:
+                    ratio = t["reactive"] / t["seed"] if t["seed"] and not math.isnan(t["seed"]) else math.nan
+                    row += f" | {fmt(ratio)}× |"
+                else:
+                    row += " |"
+                md.append(row)
+    # Figure 5: frames in contact against particle count.
+    counts = sorted({int(r["particle_count"]) for r in runs})
+    colours = {x: c for x, c in zip(algos, ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple"])}
+    fig, axes = plt.subplots(1, len(paces), figsize=(6 * len(paces), 4), squeeze=False)
+    for ax, pace in zip(axes[0], paces):
+        for x in algos:
+            for c in controllers:
+                ys = []
+                for n in counts:
+                    rs = [r for r in runs if r["pace"] == pace and r["algorithm"] == x and
+                          r["controller"] == c and int(r["particle_count"]) == n]
+                    ys.append(100 * pooled(rs) if rs else math.nan)
+                if all(math.isnan(y) for y in ys):
+                    continue
+                ax.plot(counts, ys, "-" if c == "seed" else "--", marker="o" if c == "seed" else "s",
+                        ms=3, color=colours[x], label=f"{lab(x)}, {c} controller")
+        ax.axhline(1.0, color="grey", lw=0.8, ls=":")
+        ax.set_xlabel("particles")
+        ax.set_ylabel("frames in contact (%)")
+        ax.set_title(f"{pace} pacing, all scenarios")
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "fig5_contacts.png"), dpi=100)
+    plt.close(fig)
+
+
+def seed_tables(runs, replans, out, suffix, md):
+    """Seed 000's Tables II-IV and Figures 1-4 for one pacing (the seed's controller)."""
     algos = sorted({r["algorithm"] for r in runs}, key=lambda x: list(LABEL).index(x) if x in LABEL else 99)
     scenarios = [s for s in SCENARIOS if any(r["scenario"] == s for r in runs)]
     counts = sorted({int(r["particle_count"]) for r in runs})
@@ -112,9 +227,9 @@ def main():
         if r.get("reason") != "cancelled":
             plans[(r["scenario"], r["algorithm"])].append(r)
     lab = lambda x: LABEL.get(x, x)  # noqa: E731
-    md = []
     paces = sorted({r["pace"] for r in runs})
-    md.append(f"# hpcplan sim: seed 000's tables\n\n{len(runs)} runs ({', '.join(paces)} pacing), "
+    md.append(f"# hpcplan sim: seed 000's tables, {', '.join(paces)} pacing\n\n{len(runs)} runs "
+              "with the seed's controller, "
               f"particle counts {', '.join(map(str, counts))}; planners {', '.join(map(lab, algos))}. "
               "Failed runs (the cap reached) count in the success rate, never in time-to-goal means.\n")
 
@@ -198,8 +313,8 @@ def main():
     colours = {x: c for x, c in zip(algos, ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple"])}
     # Figure 1 and 2: distributions per scenario.
     for name, values, ylabel, log in (
-            ("fig1_time_to_goal.png", lambda s, x: [f(r["time_to_goal_s"]) for r in by[(s, x)] if r["success"] == "1"], "time to goal (s)", False),
-            ("fig2_plan_time.png", lambda s, x: [f(p["plan_us"]) / 1e3 for p in plans[(s, x)]], "plan time per replan (ms)", True)):
+            (f"fig1_time_to_goal{suffix}.png", lambda s, x: [f(r["time_to_goal_s"]) for r in by[(s, x)] if r["success"] == "1"], "time to goal (s)", False),
+            (f"fig2_plan_time{suffix}.png", lambda s, x: [f(p["plan_us"]) / 1e3 for p in plans[(s, x)]], "plan time per replan (ms)", True)):
         fig, axes = plt.subplots(1, len(scenarios), figsize=(4 * len(scenarios), 4), squeeze=False)
         for ax, s in zip(axes[0], scenarios):
             data = [values(s, x) or [math.nan] for x in algos]
@@ -234,7 +349,7 @@ def main():
     axes[1].set_yscale("log")
     axes[2].legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "fig3_scaling.png"), dpi=100)
+    fig.savefig(os.path.join(out, f"fig3_scaling{suffix}.png"), dpi=100)
     plt.close(fig)
     # Figure 4 (and its table): the winner of each metric per scenario.
     metrics = [("Time to Goal", ttg, min), ("Plan Time", plan_mean, min),
@@ -260,15 +375,8 @@ def main():
                    loc="center")
     tab.scale(1, 1.6)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "fig4_winners.png"), dpi=100)
+    fig.savefig(os.path.join(out, f"fig4_winners{suffix}.png"), dpi=100)
     plt.close(fig)
-    md.append(f"\nFigures: {', '.join(sorted(n for n in os.listdir(out) if n.startswith('fig')))} in {out}.\n")
-    text = "\n".join(md)
-    tmp = os.path.join(out, "sim_report.md.tmp")
-    with open(tmp, "w") as fh:
-        fh.write(text)
-    os.replace(tmp, os.path.join(out, "sim_report.md"))
-    print(text)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,8 @@
 #include "hpcplan/io/sim_report.hpp"
 
+#include <algorithm>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <map>
 
@@ -12,6 +14,10 @@ std::string num(double v, int digits = 6) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*g", digits, v);
   return buf;
+}
+
+nlohmann::json finite_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
 double mean(const std::vector<double>& xs) {
@@ -28,11 +34,12 @@ std::string sim_runs_csv(const std::vector<sim::RunRecord>& runs, bool header, b
     out +=
         "scenario,algorithm,run_number,success,time_to_goal_s,total_replans,failed_replans,"
         "avg_plan_time_us,min_plan_time_us,max_plan_time_us,avg_path_length,avg_path_nodes,"
-        "avg_path_divergence,particle_count,seed_avg_path_length,sim_time_to_goal_s,"
+        "avg_path_divergence,particle_count,contacts,contact_frames,contact_time_s,min_clearance,"
+        "max_overlap,seed_avg_path_length,sim_time_to_goal_s,"
         "wall_time_to_goal_s,p50_plan_time_us,p95_plan_time_us,p99_plan_time_us,end,"
         "fail_start_blocked,fail_goal_blocked,fail_disconnected,fail_budget,cancelled,"
         "start_escapes,goal_escapes,sph_ms_per_frame,snapshot_ms,frames,distance_travelled,"
-        "start_goal_distance,seed,pace\n";
+        "start_goal_distance,seed,pace,controller,contact_rate,reactive_overrides\n";
   auto t = [&](double v) { return timings ? num(v) : std::string(); };
   for (const sim::RunRecord& r : runs) {
     out += r.scenario + "," + r.algorithm + "," + std::to_string(r.run_number) + "," +
@@ -40,15 +47,19 @@ std::string sim_runs_csv(const std::vector<sim::RunRecord>& runs, bool header, b
            std::to_string(r.total_replans) + "," + std::to_string(r.failed_replans) + "," +
            t(r.avg_plan_time_us) + "," + t(r.min_plan_time_us) + "," + t(r.max_plan_time_us) + "," +
            num(r.avg_path_length) + "," + num(r.avg_path_nodes) + "," + num(r.avg_path_divergence) +
-           "," + std::to_string(r.particle_count) + "," + num(r.seed_avg_path_length) + "," +
-           (r.success ? num(r.sim_time_s) : "") + "," + (r.success ? t(r.wall_time_s) : "") + "," +
-           t(r.p50_plan_time_us) + "," + t(r.p95_plan_time_us) + "," + t(r.p99_plan_time_us) + "," +
-           r.end + "," + std::to_string(r.start_blocked) + "," + std::to_string(r.goal_blocked) +
-           "," + std::to_string(r.disconnected) + "," + std::to_string(r.budget) + "," +
-           std::to_string(r.cancelled) + "," + std::to_string(r.start_escapes) + "," +
-           std::to_string(r.goal_escapes) + "," + t(r.sph_ms_per_frame) + "," + t(r.snapshot_ms) +
-           "," + std::to_string(r.frames) + "," + num(r.distance_travelled) + "," +
-           num(r.start_goal_distance) + "," + std::to_string(r.seed) + "," + r.pace + "\n";
+           "," + std::to_string(r.particle_count) + "," + std::to_string(r.contacts) + "," +
+           std::to_string(r.contact_frames) + "," + num(r.contact_time_s) + "," +
+           num(r.min_clearance) + "," + num(r.max_overlap) + "," + num(r.seed_avg_path_length) +
+           "," + (r.success ? num(r.sim_time_s) : "") + "," + (r.success ? t(r.wall_time_s) : "") +
+           "," + t(r.p50_plan_time_us) + "," + t(r.p95_plan_time_us) + "," + t(r.p99_plan_time_us) +
+           "," + r.end + "," + std::to_string(r.start_blocked) + "," +
+           std::to_string(r.goal_blocked) + "," + std::to_string(r.disconnected) + "," +
+           std::to_string(r.budget) + "," + std::to_string(r.cancelled) + "," +
+           std::to_string(r.start_escapes) + "," + std::to_string(r.goal_escapes) + "," +
+           t(r.sph_ms_per_frame) + "," + t(r.snapshot_ms) + "," + std::to_string(r.frames) + "," +
+           num(r.distance_travelled) + "," + num(r.start_goal_distance) + "," +
+           std::to_string(r.seed) + "," + r.pace + "," + r.controller + "," +
+           num(r.contact_rate()) + "," + std::to_string(r.reactive_overrides) + "\n";
   }
   return out;
 }
@@ -78,6 +89,11 @@ nlohmann::json to_json(const SimInvocation& s) {
   j["runs_requested"] = o.runs;
   j["seed"] = o.seed;
   j["pace"] = std::string(sim::to_string(o.pace));
+  j["controller"] = std::string(sim::to_string(o.controller));
+  j["robot_radius"] = o.safety.robot_radius;
+  j["particle_radius"] = o.safety.particle_radius;
+  if (o.controller == sim::Controller::reactive)
+    j["reactive"] = {{"horizon_s", o.reactive.horizon_s}, {"margin", o.reactive.margin}};
   j["replan_every"] = o.replan_every;
   j["settle_frames"] = sim::settle_frames(o);
   j["max_sim_s"] = o.max_sim_s;
@@ -88,6 +104,9 @@ nlohmann::json to_json(const SimInvocation& s) {
   nlohmann::json rows = nlohmann::json::array();
   std::vector<double> ttg, plan, plan_p50, plan_p99, fail_rate, lengths, sph_ms;
   std::uint64_t successes = 0, replans = 0, failed = 0, escapes = 0;
+  std::vector<double> contact_rates;
+  std::uint64_t contacts = 0, contact_frames = 0, frames = 0;
+  double max_overlap = 0.0;
   for (const sim::RunRecord& r : s.result.runs) {
     nlohmann::json row;
     row["run_number"] = r.run_number;
@@ -117,7 +136,19 @@ nlohmann::json to_json(const SimInvocation& s) {
     row["snapshot_ms"] = r.snapshot_ms;
     row["distance_travelled"] = r.distance_travelled;
     row["start_goal_distance"] = r.start_goal_distance;
+    row["safety"] = {{"contacts", r.contacts},
+                     {"contact_frames", r.contact_frames},
+                     {"contact_time_s", r.contact_time_s},
+                     {"contact_rate", r.contact_rate()},
+                     {"min_clearance", finite_or_null(r.min_clearance)},
+                     {"max_overlap", r.max_overlap},
+                     {"reactive_overrides", r.reactive_overrides}};
     rows.push_back(row);
+    contact_rates.push_back(r.contact_rate());
+    contacts += r.contacts;
+    contact_frames += r.contact_frames;
+    frames += r.frames;
+    max_overlap = std::max(max_overlap, r.max_overlap);
     if (r.success) ++successes, ttg.push_back(r.sim_time_s);
     replans += r.total_replans;
     failed += r.failed_replans;
@@ -150,6 +181,14 @@ nlohmann::json to_json(const SimInvocation& s) {
       {"plan_time_us_p99", sim::quantile(all, 0.99)},
       {"avg_path_length", mean(lengths)},
       {"sph_ms_per_frame_median", sim::quantile(sph_ms, 0.5)},
+      // Contact rate: frames in contact / frames, per run; and over every frame of every run.
+      {"contact_rate_mean", mean(contact_rates)},
+      {"contact_rate_p50", sim::quantile(contact_rates, 0.5)},
+      {"contact_rate_p95", sim::quantile(contact_rates, 0.95)},
+      {"contact_rate_max", sim::quantile(contact_rates, 1.0)},
+      {"contact_rate_all_frames", frames ? double(contact_frames) / double(frames) : 0.0},
+      {"contacts", contacts},
+      {"max_overlap", max_overlap},
   };
   return j;
 }
@@ -159,40 +198,46 @@ std::string to_summary(const SimInvocation& s) {
   std::string out;
   char line[512];
   std::snprintf(line, sizeof line,
-                "hpcplan sim: %s, %s, %zu particles, %s pacing, seed %" PRIu64 ", %d thread(s)\n",
+                "hpcplan sim: %s, %s, %zu particles, %s pacing, %s controller, seed %" PRIu64
+                ", %d thread(s)\n",
                 j["scenario"].get<std::string>().c_str(), j["algorithm"].get<std::string>().c_str(),
-                s.options.particles, j["pace"].get<std::string>().c_str(), s.options.seed,
-                s.threads);
+                s.options.particles, j["pace"].get<std::string>().c_str(),
+                j["controller"].get<std::string>().c_str(), s.options.seed, s.threads);
   out += line;
   out +=
-      "run  result        t_goal(s)  replans  failed  plan p50(ms)  p99(ms)  path len  escapes\n";
+      "run  result        t_goal(s)  replans  failed  plan p50(ms)  p99(ms)  path len  escapes"
+      "  contacts  contact%  min clear\n";
   for (const sim::RunRecord& r : s.result.runs) {
-    std::snprintf(
-        line, sizeof line,
-        "%3d  %-12s  %9.2f  %7" PRIu64 "  %6" PRIu64 "  %12.3f  %7.3f  %8.2f  %7" PRIu64 "\n",
-        r.run_number, r.end.c_str(), r.sim_time_s, r.total_replans, r.failed_replans,
-        r.p50_plan_time_us / 1e3, r.p99_plan_time_us / 1e3, r.avg_path_length, r.start_escapes);
+    std::snprintf(line, sizeof line,
+                  "%3d  %-12s  %9.2f  %7" PRIu64 "  %6" PRIu64 "  %12.3f  %7.3f  %8.2f  %7" PRIu64
+                  "  %8" PRIu64 "  %8.2f  %9.3f\n",
+                  r.run_number, r.end.c_str(), r.sim_time_s, r.total_replans, r.failed_replans,
+                  r.p50_plan_time_us / 1e3, r.p99_plan_time_us / 1e3, r.avg_path_length,
+                  r.start_escapes, r.contacts, 100.0 * r.contact_rate(), r.min_clearance);
     out += line;
   }
   const auto& a = j["aggregate"];
   std::snprintf(
       line, sizeof line,
       "reached the goal in %d of %zu runs; failed replans %.1f%%; plan time p50 %.3f ms, "
-      "p99 %.3f ms; fluid %.2f ms/frame (median)\n",
+      "p99 %.3f ms; fluid %.2f ms/frame (median); frames in contact %.2f%% (robot radius "
+      "%.3g, particle radius %.3g)\n",
       a["successes"].get<int>(), s.result.runs.size(),
       100.0 * a["failed_replan_rate"].get<double>(), a["plan_time_us_p50"].get<double>() / 1e3,
-      a["plan_time_us_p99"].get<double>() / 1e3, a["sph_ms_per_frame_median"].get<double>());
+      a["plan_time_us_p99"].get<double>() / 1e3, a["sph_ms_per_frame_median"].get<double>(),
+      100.0 * a["contact_rate_all_frames"].get<double>(), s.options.safety.robot_radius,
+      s.options.safety.particle_radius);
   out += line;
   return out;
 }
 
 std::string trajectory_csv(const std::vector<TrajectoryRow>& rows) {
-  std::string out = "run,frame,t,robot_x,robot_y,robot_z,goal_x,goal_y,goal_z\n";
+  std::string out = "run,frame,t,robot_x,robot_y,robot_z,goal_x,goal_y,goal_z,clearance\n";
   for (const TrajectoryRow& r : rows) {
     out += std::to_string(r.run) + "," + std::to_string(r.frame) + "," + num(r.t, 17);
     for (double v : r.robot) out.append(",").append(num(v, 17));
     for (double v : r.goal) out.append(",").append(num(v, 17));
-    out += "\n";
+    out.append(",").append(num(r.clearance, 17)).append("\n");
   }
   return out;
 }

@@ -21,7 +21,7 @@ void Robot::follow(std::vector<env::Vec<3>> path) {
   next_ = std::min(nearest + 1, path_.size() - 1);
 }
 
-void Robot::step(double dt) {
+env::Vec<3> Robot::wished_velocity(double dt) {
   while (next_ < path_.size() &&
          env::distance<3>(position_, path_[next_]) <= params_.waypoint_radius &&
          next_ + 1 < path_.size())
@@ -35,6 +35,10 @@ void Robot::step(double dt) {
       for (int k = 0; k < 3; ++k) desired[k] = (path_[next_][k] - position_[k]) / d * speed;
     }
   }
+  return desired;
+}
+
+void Robot::step(double dt, const env::Vec<3>& desired) {
   // a = steer_force (desired - v), applied over dt without overshooting the desired velocity.
   const double gain = std::min(1.0, params_.steer_force * dt);
   double speed2 = 0.0;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <optional>
 #include <thread>
 
 #include "hpcplan/core/error.hpp"
@@ -40,6 +41,11 @@ void validate(const SimOptions& o) {
   if (!(o.max_wall_s >= 0) || !std::isfinite(o.max_wall_s))
     throw InputError("--max-wall-s must be a number of seconds >= 0 (0: no cap)");
   if (!(o.goal_radius > 0)) throw InputError("the goal radius must be positive");
+  if (!(o.safety.robot_radius >= 0) || !std::isfinite(o.safety.robot_radius) ||
+      !(o.safety.particle_radius >= 0) || !std::isfinite(o.safety.particle_radius))
+    throw InputError("--robot-radius and the particle radius must be numbers >= 0");
+  const ReactiveController check_reactive(o.reactive, o.safety,
+                                          o.robot.max_speed);  // throws if bad
   if (!o.make_fluid) sph::validate(fluid_options(o, o.seed));
   sph::check_backend_name(o.backend);
   plan::FluidReplanner check(o.planner);  // throws for an unknown planner or bad options
@@ -144,6 +150,7 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
   rec.algorithm = o.planner.algo;
   rec.scenario = std::string(sph::to_string(o.scenario));
   rec.pace = std::string(to_string(o.pace));
+  rec.controller = std::string(to_string(o.controller));
 
   sph::Fluid fluid(
       o.make_fluid ? o.make_fluid(run_seed) : sph::make_fluid(fluid_options(o, run_seed)),
@@ -169,6 +176,10 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
   const sph::Box3& d = fluid.state().domain;
   const env::Aabb<3> box{{d.lo[0], d.lo[1], d.lo[2]}, {d.hi[0], d.hi[1], d.hi[2]}};
   Robot robot(at.robot, box, o.robot);
+  std::optional<ReactiveController> reactive;
+  if (o.controller == Controller::reactive)
+    reactive.emplace(o.reactive, o.safety, o.robot.max_speed);
+  SafetyRecord safety;
 
   plan::FluidPlanOptions po = o.planner;
   po.seed = run_seed;
@@ -238,9 +249,14 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
       rec.end = "fluid_unstable";
       break;
     }
-    robot.step(dt);
+    env::Vec<3> velocity = robot.wished_velocity(dt);
+    if (reactive)  // velocities: full_state() (a GPU backend copies them back)
+      velocity = reactive->choose(fluid.full_state(), robot.position(), velocity, exclude, dt);
+    robot.step(dt, velocity);
     if (at.goal_id != kNoParticle) goal = particle_position(fluid.state(), at.goal_id);
     trail.push_back(robot.position());
+    const double gap = clearance(fluid.state(), robot.position(), o.safety, exclude).value();
+    safety.observe(gap, dt);
     if (env::distance<3>(robot.position(), goal) <= o.goal_radius) {
       rec.success = true;
       rec.end = "goal_reached";
@@ -250,8 +266,8 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
       rec.end = "wall_time_cap";
     }
     if (on_frame) {
-      FrameView v{run,  frame + 1,     &fluid.state(), &fluid,          robot.position(),
-                  goal, &robot.path(), &trail,         !rec.end.empty()};
+      FrameView v{run,  frame + 1,     &fluid.state(), &fluid, robot.position(),
+                  goal, &robot.path(), &trail,         gap,    !rec.end.empty()};
       on_frame(v);
     }
     if (!rec.end.empty()) break;
@@ -270,6 +286,12 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
   rec.sph_ms_per_frame = quantile(sph_ms, 0.5);
   rec.snapshot_ms = quantile(snapshot_ms, 0.5);
   rec.distance_travelled = robot.travelled();
+  rec.contacts = safety.contacts;
+  rec.contact_frames = safety.contact_frames;
+  rec.contact_time_s = safety.contact_time_s;
+  rec.min_clearance = safety.min_clearance;  // +infinity: nothing to collide with
+  rec.max_overlap = safety.max_overlap;
+  rec.reactive_overrides = reactive ? reactive->overrides() : 0;
 }
 
 }  // namespace

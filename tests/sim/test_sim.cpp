@@ -154,10 +154,11 @@ TEST(Simulator, DamBreakCrossing) {
     // surges run up the end walls and their jets fall back over the middle).
     double first_plan_top = -1.0, column_top = 0.0, lowest_x = 9, highest_x = -9;
     env::Vec<3> start{}, goal{};
+    sph::Vec3 tank{};
     bool inside = true;
     const sim::SimResult r = sim::run_simulation(o, {}, [&](const sim::FrameView& v) {
       const sph::FluidState& f = *v.fluid;
-      if (v.frame == 1) start = v.robot, goal = v.goal;
+      if (v.frame == 1) start = v.robot, goal = v.goal, tank = f.domain.hi;
       if (first_plan_top < 0 && !v.plan->empty())
         for (const env::Vec<3>& q : *v.plan) first_plan_top = std::max(first_plan_top, q[2]);
       for (std::size_t i = 0; i < f.particles.size(); ++i) {
@@ -168,12 +169,14 @@ TEST(Simulator, DamBreakCrossing) {
         if (v.frame == 30 && x[0] > 1.5 && x[0] < 2.5) column_top = std::max(column_top, x[2]);
         lowest_x = std::min(lowest_x, x[0]), highest_x = std::max(highest_x, x[0]);
       }
-      for (int k = 0; k < 3; ++k) inside = inside && v.robot[k] >= 0 && v.robot[k] <= 4;
+      for (int k = 0; k < 3; ++k)  // the tank is 4 x 1 x 3: each axis its own extent
+        inside = inside && v.robot[k] >= f.domain.lo[k] && v.robot[k] <= f.domain.hi[k];
     });
     const sim::RunRecord& run = r.runs[0];
     EXPECT_EQ(run.particle_count, 432u) << algo;  // 250 rounds to 6 x 6 x 12
     EXPECT_TRUE(run.success) << algo << " " << run.end;
     EXPECT_TRUE(inside) << algo;
+    EXPECT_EQ(tank, (sph::Vec3{4.0, 1.0, 3.0})) << algo;
     // Opposite end bays, 0.2..1.0 m from the end walls (the robot has moved one frame).
     EXPECT_LT(std::min(start[0], goal[0]), 1.1) << algo;
     EXPECT_GT(std::max(start[0], goal[0]), 2.9) << algo;

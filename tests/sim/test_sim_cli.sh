@@ -37,6 +37,9 @@ seed = ["scenario", "algorithm", "run_number", "success", "time_to_goal_s", "tot
         "failed_replans", "avg_plan_time_us", "min_plan_time_us", "max_plan_time_us",
         "avg_path_length", "avg_path_nodes", "avg_path_divergence", "particle_count"]
 assert rows[0][:14] == seed, rows[0][:14]
+# The safety columns come right after the seed's 14 (sim/safety.hpp).
+assert rows[0][14:19] == ["contacts", "contact_frames", "contact_time_s", "min_clearance",
+                          "max_overlap"], rows[0][14:19]
 assert len(rows) == 3, len(rows)
 h = rows[0]
 for r in rows[1:]:
@@ -47,6 +50,29 @@ for r in rows[1:]:
     assert row["pace"] == "lockstep" and row["seed"] == "3", row
     assert row["end"] in ("goal_reached", "sim_time_cap"), row
     assert (row["end"] == "goal_reached") == (row["success"] == "1"), row
+    assert row["controller"] == "seed", row
+    assert int(row["contact_frames"]) >= int(row["contacts"]) >= 0, row
+    assert abs(float(row["contact_time_s"]) - 0.02 * int(row["contact_frames"])) < 1e-6, row
+    assert float(row["max_overlap"]) == max(0.0, -float(row["min_clearance"])), row
+# The trajectory's clearance column agrees with the per-run figures.
+traj = list(csv.DictReader(open(f"{d}/traj1.csv")))
+assert "clearance" in traj[0], traj[0].keys()
+for r in rows[1:]:
+    row = dict(zip(h, r))
+    c = [float(t["clearance"]) for t in traj if t["run"] == row["run_number"]]
+    assert len(c) == int(row["frames"]), (len(c), row["frames"])
+    assert sum(x < 0 for x in c) == int(row["contact_frames"]), row
+    assert abs(min(c) - float(row["min_clearance"])) <= 1e-6 * max(1, abs(min(c))), row
+    events = sum(1 for i, x in enumerate(c) if x < 0 and (i == 0 or c[i - 1] >= 0))
+    assert events == int(row["contacts"]), (events, row)
+for r in j["runs"]:
+    s = r["safety"]
+    assert set(s) >= {"contacts", "contact_frames", "contact_time_s", "contact_rate",
+                      "min_clearance", "max_overlap"}, s
+for k in ["contact_rate_mean", "contact_rate_p50", "contact_rate_p95", "contact_rate_max",
+          "contact_rate_all_frames"]:
+    assert k in a, k
+assert j["controller"] == "seed" and j["robot_radius"] == 0.05, j
 rep = list(csv.reader(open(f"{d}/replans1.csv")))
 assert rep[0][:11] == ["run", "frame", "sim_time_s", "algorithm", "status", "reason", "plan_us",
                        "expanded", "length", "waypoints", "divergence"], rep[0]
@@ -55,6 +81,20 @@ assert len([r for r in rep[1:] if r[5] != "cancelled"]) == total, (len(rep), tot
 for r in rep[1:]:
     assert r[4] in ("solved", "failed") and (r[4] == "solved") == (r[5] == ""), r
 print("sim_cli: lockstep, json and csv ok")
+PY
+
+# The reactive layer: same scene, fewer frames in contact (none on this one), the goal reached.
+"$bin" sim "${common[@]}" --algo rrtstar --controller reactive --no-timings \
+  --csv "$dir/reactive.csv" > /dev/null || fail "reactive run failed"
+python3 - "$dir/runs1.csv" "$dir/reactive.csv" <<'PY' || exit 1
+import csv, sys
+plain = list(csv.DictReader(open(sys.argv[1])))
+react = list(csv.DictReader(open(sys.argv[2])))
+assert all(r["controller"] == "reactive" and r["success"] == "1" for r in react), react
+p = sum(int(r["contact_frames"]) for r in plain)
+q = sum(int(r["contact_frames"]) for r in react)
+assert q <= p and int(react[0]["reactive_overrides"]) > 0, (p, q)
+print(f"sim_cli: reactive ok (frames in contact {p} -> {q})")
 PY
 
 # dambreak: the water column (250 particles round to 432), no settling, the run and its JSON.
@@ -137,6 +177,9 @@ if ! "$bin" sim --backend cuda --particles 300 --max-sim-s 0.1 --settle-frames 0
 fi
 bad "planner" --algo nosuch
 bad "pace" --pace fast
+bad "controller" --controller fast
+bad "robot-radius" --robot-radius -1
+bad "reactive-horizon" --reactive-horizon 0
 bad "replan-every" --replan-every 0
 bad "max-sim-s" --max-sim-s 0
 bad "max-wall-s" --max-wall-s -1

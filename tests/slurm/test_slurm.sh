@@ -91,7 +91,7 @@ sweep() {  # submit with the small sweep's settings in the job's environment
 jid=$(sweep sim sim_sweep.sbatch --array 0-3 --cpus-per-task 1) ||
   fail "sim sweep array failed"
 sweep=$work/results/sim/$jid
-[[ $(ls "$sweep"/cells/*_*_500.csv 2>/dev/null | grep -vc replans) -eq 4 ]] ||
+[[ $(ls "$sweep"/cells/*_*_500_lockstep_seed.csv 2>/dev/null | grep -vc replans) -eq 4 ]] ||
   fail "sim sweep cells missing: $(ls "$sweep/cells" 2>&1)"
 /usr/bin/python3 "$root/scripts/sim_report.py" "$sweep" --out "$work/simreport" > "$work/sim.md" ||
   fail "sim_report failed"
@@ -112,6 +112,29 @@ if PARTICLES=500 SCENARIOS="particles dynamic" ALGOS="astar rrtstar" \
   fail "a cell beyond the sweep's grid was accepted"
 fi
 grep -q "cell 4 is not in 0..3" "$work/err.txt" || fail "unclear error for a cell beyond the grid"
+# Both pacings and both controllers in one folder: resuming after an interrupted realtime cell
+# reruns that cell only (the lockstep ones and the finished realtime one stay as they were).
+mixed=$work/results/sim/mixed
+mix() {
+  PARTICLES=300 SCENARIOS=particles ALGOS=astar TRIALS=1 PACES="lockstep realtime" \
+    CONTROLLERS="seed reactive" MAX_SIM_S=2 THREADS=1 BIN=$bins/hpcplan \
+    bash "$root/bench/sim_sweep.sh" "$mixed" 2> "$work/mix.txt"
+}
+mix || fail "the mixed sweep failed: $(cat "$work/mix.txt")"
+[[ $(ls "$mixed"/cells/particles_astar_300_*.csv | grep -vc replans) -eq 4 ]] ||
+  fail "mixed sweep cells missing: $(ls "$mixed/cells")"
+for c in lockstep_seed lockstep_reactive realtime_seed realtime_reactive; do
+  grep -q "${c%_*},${c#*_}," "$mixed/cells/particles_astar_300_$c.csv" ||
+    fail "cell $c does not record its pacing and controller"
+done
+rm "$mixed/cells/particles_astar_300_realtime_reactive.csv"  # as if killed before its end
+touch "$work/marker2"
+sleep 1
+mix || fail "resuming the mixed sweep failed: $(cat "$work/mix.txt")"
+[[ $(grep -c "already done" "$work/mix.txt") -eq 3 ]] || fail "mixed resume: $(cat "$work/mix.txt")"
+[[ $(find "$mixed/cells" -name '*.csv' -newer "$work/marker2" | grep -vc replans) -eq 1 &&
+   -n $(find "$mixed/cells" -name 'particles_astar_300_realtime_reactive.csv' -newer "$work/marker2") ]] ||
+  fail "the mixed resume did not rerun exactly the missing realtime cell"
 
 # 9. submit.sh: clear errors for a missing binary and when no controller answers.
 if HPCPLAN_BIN_DIR=$work/nowhere bash "$root/slurm/submit.sh" smoke > /dev/null 2> "$work/err.txt"; then

@@ -26,12 +26,14 @@ std::string sim_replans_csv(const std::vector<sim::ReplanRecord>& replans, bool 
 nlohmann::json to_json(const SimInvocation& s);
 std::string to_summary(const SimInvocation& s);
 
-// run,frame,t,robot_x,robot_y,robot_z,goal_x,goal_y,goal_z (17 significant digits).
+// run,frame,t,robot_x,robot_y,robot_z,goal_x,goal_y,goal_z,clearance (17 significant digits;
+// clearance: the robot's this frame, negative in contact, see sim/safety.hpp).
 struct TrajectoryRow {
   int run;
   std::uint64_t frame;
   double t;
   env::Vec<3> robot, goal;
+  double clearance;
 };
 std::string trajectory_csv(const std::vector<TrajectoryRow>& rows);
 

@@ -56,6 +56,16 @@ struct RunRecord {
   double snapshot_ms = 0.0;       // median, per replan
   double distance_travelled = 0.0;
   double start_goal_distance = 0.0;
+  // Safety (safety.hpp), over the frames after the robot was placed.
+  std::string controller;  // seed or reactive
+  std::uint64_t contacts = 0, contact_frames = 0;
+  double contact_time_s = 0.0;
+  double min_clearance = 0.0;            // over the run's frames (+infinity: no obstacle at all)
+  double max_overlap = 0.0;              // deepest overlap, >= 0
+  std::uint64_t reactive_overrides = 0;  // frames where the reactive layer changed the velocity
+  double contact_rate() const {
+    return frames ? static_cast<double>(contact_frames) / static_cast<double>(frames) : 0.0;
+  }
 };
 
 // The divergence of `path` from `previous` as defined above (0 when either is empty).

@@ -24,8 +24,13 @@ class Robot {
   // A new plan: its first point is where the robot was when it was asked for; the robot heads
   // for the first waypoint after the one nearest to where it is now.
   void follow(std::vector<env::Vec<3>> path);
-  // Advances by dt seconds.
-  void step(double dt);
+  // The velocity the plan asks for now (passing the waypoints already reached): max_speed
+  // towards the current waypoint, never past it in one step; zero with no plan.
+  env::Vec<3> wished_velocity(double dt);
+  // Advances by dt seconds steering towards `desired` (a reactive layer's choice).
+  void step(double dt, const env::Vec<3>& desired);
+  // Advances by dt seconds following the plan (the seed's controller).
+  void step(double dt) { step(dt, wished_velocity(dt)); }
 
   const env::Vec<3>& position() const { return position_; }
   const env::Vec<3>& velocity() const { return velocity_; }

@@ -32,6 +32,7 @@
 
 #include "hpcplan/plan/fluid_planner.hpp"
 #include "hpcplan/sim/metrics.hpp"
+#include "hpcplan/sim/reactive_controller.hpp"
 #include "hpcplan/sim/robot.hpp"
 #include "hpcplan/sph/fluid.hpp"
 #include "hpcplan/sph/fluid_state.hpp"
@@ -57,6 +58,9 @@ struct SimOptions {
   double max_wall_s = 0.0;   // wall seconds before a run is failed; 0 = none
   double goal_radius = 0.2;  // 4 particle radii of 0.05
   RobotParams robot;
+  SafetyParams safety;                       // the radii contacts are measured with
+  Controller controller = Controller::seed;  // reactive: the layer of reactive_controller.hpp
+  ReactiveParams reactive;
   std::string backend = "cpu";  // the fluid's: cpu or cuda (sph::make_backend)
   // Scenes of one's own (tests, studies): when set, builds each run's fluid from the run's seed
   // instead of the seed preset, and `place` (if set) picks the robot's and goal's particles.
@@ -73,6 +77,7 @@ struct FrameView {
   env::Vec<3> robot{}, goal{};
   const std::vector<env::Vec<3>>* plan = nullptr;   // the path the robot follows (may be empty)
   const std::vector<env::Vec<3>>* trail = nullptr;  // where the robot has been
+  double clearance = 0.0;                           // the robot's, this frame (safety.hpp)
   bool last = false;                                // the run ends after this frame
 };
 
