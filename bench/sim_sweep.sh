@@ -15,9 +15,12 @@
 # static dynamic"), ALGOS ("astar rrtstar dstar_lite"), TRIALS (5), SEED (1), PACES (one or
 # both of realtime and lockstep; default: PACE, else realtime. realtime: the seed's, planning
 # latency costs simulated time; lockstep: deterministic and faster than real time), CONTROLLERS
-# ("seed"; "seed reactive" runs both), MAX_SIM_S (300), THREADS (2), BIN (build/bin/hpcplan).
-# Cells are named SCENARIO_ALGO_N_PACE_CONTROLLER, so one folder holds every pacing and
-# controller and resuming it completes each of them.
+# ("seed"; "seed reactive" runs both), OCCUPANCIES ("particles": the seed's occupancy grid;
+# "density:T" thresholds the SPH-interpolated density at T particle equivalents, e.g.
+# "particles density:0.42 density:1"), MAX_SIM_S (300), THREADS (2), BIN (build/bin/hpcplan).
+# Cells are named SCENARIO_ALGO_N_PACE_CONTROLLER (with _densityT appended for a density
+# occupancy), so one folder holds every pacing, controller and occupancy and resuming it
+# completes each of them.
 # The dam break (beyond the seed; water, so far costlier per particle) is its own sweep, e.g.
 #   SCENARIOS=dambreak PARTICLES="250 2000 6750" MAX_SIM_S=10 bench/sim_sweep.sh results/sim/dam
 # Aggregate with: python3 scripts/sim_report.py OUT [more result folders...]
@@ -31,19 +34,29 @@ read -r -a scenarios <<< "${SCENARIOS:-particles static dynamic}"
 read -r -a algos <<< "${ALGOS:-astar rrtstar dstar_lite}"
 read -r -a paces <<< "${PACES:-${PACE:-realtime}}"
 read -r -a controllers <<< "${CONTROLLERS:-seed}"
+read -r -a occupancies <<< "${OCCUPANCIES:-particles}"
 trials=${TRIALS:-5} seed=${SEED:-1} max_sim=${MAX_SIM_S:-300}
 threads=${THREADS:-2}
 bin=${BIN:-$root/build/bin/hpcplan}
 die() { echo "sim_sweep: error: $*" >&2; exit 2; }
 for p in "${paces[@]}"; do [[ $p == realtime || $p == lockstep ]] || die "unknown pace $p"; done
 for c in "${controllers[@]}"; do [[ $c == seed || $c == reactive ]] || die "unknown controller $c"; done
-cells=$((${#particles[@]} * ${#scenarios[@]} * ${#algos[@]} * ${#paces[@]} * ${#controllers[@]}))
-((cells > 0)) || die "no cells: PARTICLES, SCENARIOS, ALGOS, PACES and CONTROLLERS must not be empty"
+for o in "${occupancies[@]}"; do
+  [[ $o == particles || $o =~ ^density:[0-9]*\.?[0-9]+$ ]] ||
+    die "unknown occupancy $o (expected particles or density:THRESHOLD)"
+done
+cells=$((${#particles[@]} * ${#scenarios[@]} * ${#algos[@]} * ${#paces[@]} * ${#controllers[@]} *
+  ${#occupancies[@]}))
+((cells > 0)) || die "no cells: PARTICLES, SCENARIOS, ALGOS, PACES, CONTROLLERS and OCCUPANCIES must not be empty"
 
-# Cell k: particle counts outermost (small fluids first), then scenarios, planners, pacings and
-# controllers (innermost: the two controllers of a setting run one after the other).
+# Cell k: particle counts outermost (small fluids first), then scenarios, planners, pacings,
+# controllers and occupancies (innermost: the settings compared run one after the other). With one
+# occupancy the numbering is the one before occupancies existed, so older sweeps still resume.
 cell_of() {
-  local k=$1 nc=${#controllers[@]} np=${#paces[@]} na=${#algos[@]} ns=${#scenarios[@]}
+  local k=$1 no=${#occupancies[@]} nc=${#controllers[@]} np=${#paces[@]} na=${#algos[@]}
+  local ns=${#scenarios[@]}
+  occupancy=${occupancies[$((k % no))]}
+  k=$((k / no))
   controller=${controllers[$((k % nc))]}
   pace=${paces[$((k / nc % np))]}
   algo=${algos[$((k / nc / np % na))]}
@@ -54,12 +67,16 @@ cell_of() {
 run_cell() {  # run_cell K OUT: prints "ran" or "skipped"
   local k=$1 out=$2
   cell_of "$k"
-  local name="${scenario}_${algo}_${n}_${pace}_${controller}"
+  local name="${scenario}_${algo}_${n}_${pace}_${controller}" occupancy_args=()
+  if [[ $occupancy != particles ]]; then
+    name+="_density${occupancy#density:}"
+    occupancy_args=(--occupancy density --density-threshold "${occupancy#density:}")
+  fi
   if [[ -f $out/cells/$name.csv ]]; then echo skipped; return; fi
   mkdir -p "$out/cells"
   "$bin" sim --particles "$n" --scenario "$scenario" --algo "$algo" --runs "$trials" \
     --seed "$seed" --pace "$pace" --controller "$controller" --max-sim-s "$max_sim" \
-    --threads "$threads" \
+    --threads "$threads" "${occupancy_args[@]}" \
     --replan-log "$out/cells/$name.replans.csv" --output "$out/cells/$name.json" \
     --csv "$out/cells/$name.csv" > /dev/null 2> "$out/cells/$name.log" ||
     die "cell $k ($name) failed: $(tail -1 "$out/cells/$name.log")"
@@ -74,13 +91,13 @@ case ${1:-} in
     [[ -x $bin ]] || die "$bin not found: build first (bash scripts/build.sh)"
     run_cell "$2" "$3" > /dev/null
     cell_of "$2"
-    echo "sim_sweep: cell $2 ($scenario $algo $n particles, $pace, $controller) done in $3/cells"
+    echo "sim_sweep: cell $2 ($scenario $algo $n particles, $pace, $controller, $occupancy) done in $3/cells"
     exit 0 ;;
 esac
 out=${1:-$root/results/sim/local}
 [[ -x $bin ]] || die "$bin not found: build first (bash scripts/build.sh)"
 mkdir -p "$out"
-echo "sim_sweep: $cells cells x $trials trials, pacing ${paces[*]}, controller ${controllers[*]}, into $out" >&2
+echo "sim_sweep: $cells cells x $trials trials, pacing ${paces[*]}, controller ${controllers[*]}, occupancy ${occupancies[*]}, into $out" >&2
 start=$SECONDS ran=0
 for ((k = 0; k < cells; k++)); do
   t0=$SECONDS
@@ -90,12 +107,12 @@ for ((k = 0; k < cells; k++)); do
     ran=$((ran + 1))
     per=$(((SECONDS - start) / ran))
     left=$(((cells - k - 1) * per))
-    printf 'sim_sweep: [%d/%d] %s %s %d %s %s: %ds; about %dh%02dm left\n' $((k + 1)) "$cells" \
-      "$scenario" "$algo" "$n" "$pace" "$controller" $((SECONDS - t0)) $((left / 3600)) \
-      $((left % 3600 / 60)) >&2
+    printf 'sim_sweep: [%d/%d] %s %s %d %s %s %s: %ds; about %dh%02dm left\n' $((k + 1)) \
+      "$cells" "$scenario" "$algo" "$n" "$pace" "$controller" "$occupancy" $((SECONDS - t0)) \
+      $((left / 3600)) $((left % 3600 / 60)) >&2
   else
-    printf 'sim_sweep: [%d/%d] %s %s %d %s %s: already done\n' $((k + 1)) "$cells" "$scenario" \
-      "$algo" "$n" "$pace" "$controller" >&2
+    printf 'sim_sweep: [%d/%d] %s %s %d %s %s %s: already done\n' $((k + 1)) "$cells" \
+      "$scenario" "$algo" "$n" "$pace" "$controller" "$occupancy" >&2
   fi
 done
 echo "sim_sweep: done; report: python3 scripts/sim_report.py $out" >&2

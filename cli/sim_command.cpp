@@ -24,7 +24,8 @@ namespace {
 
 struct SimArgs {
   sim::SimOptions o;
-  std::string scenario = "particles", pace = "lockstep", controller = "seed";
+  std::string scenario = "particles", pace = "lockstep", controller = "seed",
+              occupancy = "particles";
   int threads = 0;
   std::string csv, replan_log, trajectory, output, vtk_dir;
   std::uint64_t every = 5;
@@ -37,6 +38,7 @@ int run(SimArgs& a) {
   o.scenario = sph::parse_scenario(a.scenario);
   o.pace = sim::parse_pace(a.pace);
   o.controller = sim::parse_controller(a.controller);
+  o.planner.occupancy.rule = env::parse_occupancy_rule(a.occupancy);
   sim::validate(o);
   const std::uint64_t need = sph::estimated_bytes(sim::fluid_options(o, o.seed));
   const double budget = a.memory_mb > 0.0 ? a.memory_mb * 1048576.0
@@ -81,7 +83,8 @@ int run(SimArgs& a) {
       [&](const sim::RunRecord& r) {
         if (o.runs > 1)
           std::fprintf(stderr, "run %d/%d: %s after %.1f s simulated (%.1f s wall)\n", r.run_number,
-                       o.runs, r.end.c_str(), r.sim_time_s, r.wall_time_s);
+                       o.runs, std::string(sim::to_string(r.end)).c_str(), r.sim_time_s,
+                       r.wall_time_s);
       },
       on_frame);
   inv.seconds = clock.seconds();
@@ -162,6 +165,19 @@ Action register_sim_command(CLI::App& app) {
   add_param(cmd, "goal_radius", o.planner.goal_radius)->capture_default_str();
   add_param(cmd, "goal_bias", o.planner.goal_bias)->capture_default_str();
   add_param(cmd, "time", o.planner.time_s)->capture_default_str();
+  cmd->add_option("--occupancy", a.occupancy,
+                  "How particles block the grid planners' cells: particles (within 0.14 of the "
+                  "centre, the seed's) | density (the SPH-interpolated density reaches "
+                  "--density-threshold)")
+      ->capture_default_str();
+  add_number(cmd, "--density-support", o.planner.occupancy.density_support,
+             "occupancy density: the poly6 kernel's support radius", 1e-6, 1e3)
+      ->capture_default_str();
+  add_number(cmd, "--density-threshold", o.planner.occupancy.density_threshold,
+             "occupancy density: particle equivalents that block a cell (a lone particle on "
+             "the centre counts 1)",
+             1e-6, 1e9)
+      ->capture_default_str();
   add_number(cmd, "--escape", o.planner.escape_cells,
              "How far (cells of 0.2) a blocked robot or goal may move to plan", 0, 100)
       ->capture_default_str();

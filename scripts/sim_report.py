@@ -20,6 +20,12 @@ Beyond the paper: contacts (sim/safety.hpp): per scenario, planner and pacing, t
 contact with the seed's controller and with the reactive layer, their times to goal and the
 ratio, and figure 5 (fig5_contacts.png): frames in contact against particle count, per planner,
 pacing and controller.
+
+Adaptive occupancy (beyond the paper; env/occupancy_world.hpp): when runs with a density
+occupancy are present, a table compares each with the seed's occupancy on the settings both
+ran (failed replans and why, frames in contact, time to goal, success) and figure 6
+(fig6_occupancy.png) plots failed replans and frames in contact against particle count. The
+seed's tables and the contact table use the seed's occupancy only.
 """
 import argparse
 import csv
@@ -65,6 +71,8 @@ def load(paths):
             r.setdefault("controller", "seed")  # CSVs from before the reactive layer
             if r["controller"] in ("", None):
                 r["controller"] = "seed"
+            if r.get("occupancy") in ("", None):  # CSVs from before adaptive occupancy
+                r["occupancy"] = "particles"
         runs += rows
         log = f[:-4] + ".replans.csv"
         if os.path.exists(log):
@@ -72,8 +80,8 @@ def load(paths):
                 rp = list(csv.DictReader(fh))
             first = rows[0]
             for r in rp:
-                for k in ("scenario", "particle_count", "pace", "controller"):
-                    r[k] = first.get(k, "seed" if k == "controller" else "")
+                for k in ("scenario", "particle_count", "pace", "controller", "occupancy"):
+                    r[k] = first.get(k, "")
             replans += rp
     if not runs:
         sys.exit("sim_report: error: no per-run CSV of hpcplan sim found")
@@ -110,6 +118,11 @@ def main():
     ap.add_argument("--out", default=None)
     a = ap.parse_args()
     runs, replans = load(a.results)
+    all_runs, all_replans = runs, replans
+    runs = [r for r in runs if r["occupancy"] == "particles"]
+    replans = [r for r in replans if r["occupancy"] == "particles"]
+    if not runs:
+        sys.exit("sim_report: error: no run with the seed's occupancy (particles) found")
     out = a.out or (a.results[0] if os.path.isdir(a.results[0]) else os.path.dirname(a.results[0]) or ".")
     os.makedirs(out, exist_ok=True)
     md = []
@@ -120,6 +133,7 @@ def main():
                     [r for r in replans if r["pace"] == pace and r["controller"] == "seed"],
                     out, "" if i == 0 else f"_{pace}", md)
     contact_tables(runs, out, md)
+    occupancy_tables(all_runs, all_replans, out, md)
     md.append(f"\nFigures: {', '.join(sorted(n for n in os.listdir(out) if n.startswith('fig')))} in {out}.\n")
     text = "\n".join(md)
     tmp = os.path.join(out, "sim_report.md.tmp")
@@ -211,6 +225,96 @@ def contact_tables(runs, out, md):
         ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "fig5_contacts.png"), dpi=100)
+    plt.close(fig)
+
+
+def occupancy_tables(runs, replans, out, md):
+    """Each density occupancy against the seed's, on the settings (scenario, planner, pacing,
+    controller, particle count) both ran."""
+    rules = sorted({r["occupancy"] for r in runs} - {"particles"})
+    if not rules:
+        return
+    lab = lambda x: LABEL.get(x, x)  # noqa: E731
+    key = lambda r: (r["scenario"], r["algorithm"], r["pace"], r["controller"], r["particle_count"])  # noqa: E731
+    base = {key(r) for r in runs if r["occupancy"] == "particles"}
+
+    def stats(rs, ps):
+        frames = sum(int(r["frames"]) for r in rs)
+        ok = [f(r["time_to_goal_s"]) for r in rs if r["success"] == "1"]
+        ends = sum(p["reason"] in ("start_blocked", "goal_blocked") for p in ps)
+        failed = sum(p["status"] != "solved" for p in ps)
+        return {"fail": failed / len(ps) if ps else math.nan,
+                "ends": ends / len(ps) if ps else math.nan,
+                "contact": sum(int(r["contact_frames"]) for r in rs) / frames if frames else math.nan,
+                "ttg": statistics.fmean(ok) if ok else math.nan,
+                "success": f"{len(ok)}/{len(rs)}"}
+
+    md.append("\n## Adaptive occupancy: the SPH density thresholded on the grid (beyond the paper)\n")
+    md.append("Each density rule (density:SUPPORT:THRESHOLD, in particle equivalents) against the "
+              "seed's occupancy (a cell blocked by any particle within 0.14 of its centre), on the "
+              "same settings and particle counts. Failed: replans that found no path (blocked ends: "
+              "those where the robot or the goal had no free cell within reach); contact: frames in "
+              "contact; time to goal: successful runs, mean (s).\n")
+    md.append("| Scenario | Planner | Pacing | Controller | Occupancy | counts | failed replans "
+              "(blocked ends) | frames in contact | time to goal | success | failed, density / seed "
+              "| time to goal, density / seed |")
+    md.append("|" + "---|" * 12)
+    groups = sorted({key(r)[:4] for r in runs if r["occupancy"] != "particles"})
+    for g in groups:
+        for rule in rules:
+            keys = {key(r) for r in runs if r["occupancy"] == rule and key(r)[:4] == g} & base
+            if not keys:
+                continue
+            counts = sorted({int(k[4]) for k in keys})
+            res = {}
+            for o in ("particles", rule):
+                rs = [r for r in runs if r["occupancy"] == o and key(r) in keys]
+                ps = [p for p in replans if p["occupancy"] == o and key(p) in keys and
+                      p["reason"] != "cancelled"]
+                res[o] = stats(rs, ps)
+            for o in ("particles", rule):
+                x = res[o]
+                row = (f"| {NAMES.get(g[0], g[0])} | {lab(g[1])} | {g[2]} | {g[3]} | {o} | "
+                       f"{len(counts)} ({counts[0]}–{counts[-1]}) | {fmt(100 * x['fail'], 1)}% "
+                       f"({fmt(100 * x['ends'], 1)}%) | {fmt(100 * x['contact'], 2)}% | "
+                       f"{fmt(x['ttg'])} | {x['success']} | ")
+                if o == rule:
+                    b = res["particles"]
+                    row += (f"{fmt(x['fail'] / b['fail']) if b['fail'] else '–'}× | "
+                            f"{fmt(x['ttg'] / b['ttg']) if b['ttg'] else '–'}× |")
+                else:
+                    row += " | |"
+                md.append(row)
+    # Figure 6: failed replans and frames in contact against particle count, all scenarios.
+    settings = sorted({(r["algorithm"], r["pace"], r["controller"]) for r in runs
+                       if r["occupancy"] != "particles"})
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4))
+    styles = ["-", "--", ":", "-."]
+    for i, (x, pace, c) in enumerate(settings):
+        for j, o in enumerate(["particles"] + rules):
+            keys = {key(r) for r in runs if (r["algorithm"], r["pace"], r["controller"]) == (x, pace, c)
+                    and r["occupancy"] == o}
+            counts = sorted({int(k[4]) for k in keys})
+            if not counts:
+                continue
+            fail, contact = [], []
+            for n in counts:
+                rs = [r for r in runs if r["occupancy"] == o and key(r)[1:4] == (x, pace, c) and
+                      int(r["particle_count"]) == n]
+                ps = [p for p in replans if p["occupancy"] == o and key(p)[1:4] == (x, pace, c) and
+                      int(p["particle_count"]) == n and p["reason"] != "cancelled"]
+                st = stats(rs, ps)
+                fail.append(100 * st["fail"])
+                contact.append(100 * st["contact"])
+            lbl = f"{lab(x)}, {c}, {o}"
+            axes[0].plot(counts, fail, styles[j % 4], marker="o", ms=3, color=f"C{i}", label=lbl)
+            axes[1].plot(counts, contact, styles[j % 4], marker="o", ms=3, color=f"C{i}", label=lbl)
+    for ax, title in zip(axes, ("failed replans (%)", "frames in contact (%)")):
+        ax.set_xlabel("particles")
+        ax.set_title(title + ", all scenarios")
+    axes[1].legend(fontsize=6)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "fig6_occupancy.png"), dpi=100)
     plt.close(fig)
 
 

@@ -2,11 +2,32 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/env/voxel_walk.hpp"
+#include "hpcplan/sph/kernels.hpp"
 
 namespace hpcplan::env {
+
+std::string_view to_string(OccupancyRule r) {
+  return r == OccupancyRule::density ? "density" : "particles";
+}
+
+OccupancyRule parse_occupancy_rule(std::string_view name) {
+  if (name == "particles") return OccupancyRule::particles;
+  if (name == "density") return OccupancyRule::density;
+  throw InputError("unknown occupancy rule '" + std::string(name) +
+                   "' (expected particles or density)");
+}
+
+std::string occupancy_label(const OccupancyConfig& c) {
+  if (c.rule == OccupancyRule::particles) return "particles";
+  std::ostringstream out;  // shortest form of each number (0.28, not 0.280000)
+  out << "density:" << c.density_support << ":" << c.density_threshold;
+  return out.str();
+}
 
 OccupancyWorld::OccupancyWorld(const FluidSnapshot& snapshot, const OccupancyConfig& config) {
   rebuild(snapshot, config);
@@ -18,6 +39,10 @@ void OccupancyWorld::rebuild(const FluidSnapshot& snapshot, const OccupancyConfi
     throw InputError("the occupancy grid's cell must be a positive number");
   if (!(config.particle_radius >= 0.0) || !(config.box_inflation >= 0.0))
     throw InputError("the occupancy grid's particle radius and box inflation must be >= 0");
+  if (config.rule == OccupancyRule::density &&
+      (!(config.density_support > 0.0) || !std::isfinite(config.density_support) ||
+       !(config.density_threshold > 0.0) || !std::isfinite(config.density_threshold)))
+    throw InputError("the density occupancy's support and threshold must be positive numbers");
   double cells = 1.0;
   for (int k = 0; k < 3; ++k) {
     const double extent = domain_.hi[k] - domain_.lo[k];
@@ -30,24 +55,41 @@ void OccupancyWorld::rebuild(const FluidSnapshot& snapshot, const OccupancyConfi
   if (cells > 2147483648.0) throw InputError("the occupancy grid would need over 2^31 cells");
   occupied_.assign(static_cast<std::size_t>(cells), 0);
 
-  // Particles: the cells whose centre lies within the radius (centre of cell i along an axis:
-  // lo + (i + 0.5) size).
-  const double r = config.particle_radius, r2 = r * r;
-  for (const Vec<3>& p : snapshot.particles) {
+  // Visits the cells whose centre lies within r of p (centre of cell i along an axis:
+  // lo + (i + 0.5) size) with their index and squared distance.
+  auto for_cells_near = [&](const Vec<3>& p, double r, auto&& visit) {
     int lo[3], hi[3];
     for (int k = 0; k < 3; ++k) {
       const double u = (p[k] - domain_.lo[k]) / size_[k];
       lo[k] = std::max(0, static_cast<int>(std::ceil(u - r / size_[k] - 0.5)));
       hi[k] = std::min(n_[k] - 1, static_cast<int>(std::floor(u + r / size_[k] - 0.5)));
     }
+    const double r2 = r * r;
     for (int z = lo[2]; z <= hi[2]; ++z)
       for (int y = lo[1]; y <= hi[1]; ++y)
         for (int x = lo[0]; x <= hi[0]; ++x) {
           const Point c = centre({x, y, z});
           const double d2 = (c[0] - p[0]) * (c[0] - p[0]) + (c[1] - p[1]) * (c[1] - p[1]) +
                             (c[2] - p[2]) * (c[2] - p[2]);
-          if (d2 <= r2) occupied_[index({x, y, z})] = 1;
+          if (d2 <= r2) visit(index({x, y, z}), d2);
         }
+  };
+  if (config.rule == OccupancyRule::particles) {
+    density_.clear();
+    for (const Vec<3>& p : snapshot.particles)
+      for_cells_near(p, config.particle_radius, [&](std::uint32_t i, double) { occupied_[i] = 1; });
+  } else {
+    // The fluid's poly6 kernel over W(0): one particle on the centre weighs 1.
+    const sph::Poly6Kernel kernel(config.density_support);
+    const double w0 = kernel.w(0.0);
+    density_.assign(occupied_.size(), 0.0f);
+    for (const Vec<3>& p : snapshot.particles)
+      for_cells_near(p, config.density_support, [&](std::uint32_t i, double d2) {
+        density_[i] += static_cast<float>(kernel.w(d2) / w0);
+      });
+    const auto threshold = static_cast<float>(config.density_threshold);
+    for (std::size_t i = 0; i < density_.size(); ++i)
+      if (density_[i] >= threshold) occupied_[i] = 1;
   }
   // Boxes, grown: cells overlapping them with positive volume.
   for (const Aabb<3>& b : snapshot.boxes) {

@@ -39,7 +39,7 @@ std::string sim_runs_csv(const std::vector<sim::RunRecord>& runs, bool header, b
         "wall_time_to_goal_s,p50_plan_time_us,p95_plan_time_us,p99_plan_time_us,end,"
         "fail_start_blocked,fail_goal_blocked,fail_disconnected,fail_budget,cancelled,"
         "start_escapes,goal_escapes,sph_ms_per_frame,snapshot_ms,frames,distance_travelled,"
-        "start_goal_distance,seed,pace,controller,contact_rate,reactive_overrides\n";
+        "start_goal_distance,seed,pace,controller,contact_rate,reactive_overrides,occupancy\n";
   auto t = [&](double v) { return timings ? num(v) : std::string(); };
   for (const sim::RunRecord& r : runs) {
     out += r.scenario + "," + r.algorithm + "," + std::to_string(r.run_number) + "," +
@@ -52,14 +52,15 @@ std::string sim_runs_csv(const std::vector<sim::RunRecord>& runs, bool header, b
            num(r.min_clearance) + "," + num(r.max_overlap) + "," + num(r.seed_avg_path_length) +
            "," + (r.success ? num(r.sim_time_s) : "") + "," + (r.success ? t(r.wall_time_s) : "") +
            "," + t(r.p50_plan_time_us) + "," + t(r.p95_plan_time_us) + "," + t(r.p99_plan_time_us) +
-           "," + r.end + "," + std::to_string(r.start_blocked) + "," +
+           "," + std::string(sim::to_string(r.end)) + "," + std::to_string(r.start_blocked) + "," +
            std::to_string(r.goal_blocked) + "," + std::to_string(r.disconnected) + "," +
            std::to_string(r.budget) + "," + std::to_string(r.cancelled) + "," +
            std::to_string(r.start_escapes) + "," + std::to_string(r.goal_escapes) + "," +
            t(r.sph_ms_per_frame) + "," + t(r.snapshot_ms) + "," + std::to_string(r.frames) + "," +
            num(r.distance_travelled) + "," + num(r.start_goal_distance) + "," +
            std::to_string(r.seed) + "," + r.pace + "," + r.controller + "," +
-           num(r.contact_rate()) + "," + std::to_string(r.reactive_overrides) + "\n";
+           num(r.contact_rate()) + "," + std::to_string(r.reactive_overrides) + "," + r.occupancy +
+           "\n";
   }
   return out;
 }
@@ -71,12 +72,12 @@ std::string sim_replans_csv(const std::vector<sim::ReplanRecord>& replans, bool 
   auto t = [&](double v) { return timings ? num(v) : std::string(); };
   for (const sim::ReplanRecord& r : replans)
     out += std::to_string(r.run) + "," + std::to_string(r.frame) + "," + num(r.sim_time_s) + "," +
-           r.algorithm + "," + (r.solved ? "solved" : "failed") + "," + r.reason + "," +
-           t(r.plan_us) + "," + std::to_string(r.expanded) + "," + num(r.length) + "," +
+           r.algorithm + "," + std::string(to_string(r.status)) + "," + std::string(r.reason()) +
+           "," + t(r.plan_us) + "," + std::to_string(r.expanded) + "," + num(r.length) + "," +
            std::to_string(r.waypoints) + "," + (r.divergence >= 0 ? num(r.divergence) : "") + "," +
            t(r.world_us) + "," + t(r.search_us) + "," + t(r.smooth_us) + "," +
            (r.start_escaped ? "1" : "0") + "," + (r.goal_escaped ? "1" : "0") + "," +
-           r.incremental + "\n";
+           std::string(plan::to_string(r.incremental)) + "\n";
   return out;
 }
 
@@ -94,6 +95,16 @@ nlohmann::json to_json(const SimInvocation& s) {
   j["particle_radius"] = o.safety.particle_radius;
   if (o.controller == sim::Controller::reactive)
     j["reactive"] = {{"horizon_s", o.reactive.horizon_s}, {"margin", o.reactive.margin}};
+  {
+    const env::OccupancyConfig& g = o.planner.occupancy;
+    j["occupancy"] = {{"rule", std::string(env::to_string(g.rule))}, {"cell", g.cell}};
+    if (g.rule == env::OccupancyRule::density) {
+      j["occupancy"]["density_support"] = g.density_support;
+      j["occupancy"]["density_threshold"] = g.density_threshold;
+    } else {
+      j["occupancy"]["particle_radius"] = g.particle_radius;
+    }
+  }
   j["replan_every"] = o.replan_every;
   j["settle_frames"] = sim::settle_frames(o);
   j["max_sim_s"] = o.max_sim_s;
@@ -111,7 +122,7 @@ nlohmann::json to_json(const SimInvocation& s) {
     nlohmann::json row;
     row["run_number"] = r.run_number;
     row["success"] = r.success;
-    row["end"] = r.end;
+    row["end"] = std::string(sim::to_string(r.end));
     row["time_to_goal_s"] = r.sim_time_s;
     row["wall_time_s"] = r.wall_time_s;
     row["frames"] = r.frames;
@@ -164,7 +175,7 @@ nlohmann::json to_json(const SimInvocation& s) {
   // Plan-time percentiles over every replan of the invocation.
   std::vector<double> all;
   for (const sim::ReplanRecord& r : s.result.replans)
-    if (r.reason != "cancelled") all.push_back(r.plan_us);
+    if (r.status != Status::cancelled) all.push_back(r.plan_us);
   j["aggregate"] = {
       {"runs", s.result.runs.size()},
       {"successes", successes},
@@ -211,9 +222,10 @@ std::string to_summary(const SimInvocation& s) {
     std::snprintf(line, sizeof line,
                   "%3d  %-12s  %9.2f  %7" PRIu64 "  %6" PRIu64 "  %12.3f  %7.3f  %8.2f  %7" PRIu64
                   "  %8" PRIu64 "  %8.2f  %9.3f\n",
-                  r.run_number, r.end.c_str(), r.sim_time_s, r.total_replans, r.failed_replans,
-                  r.p50_plan_time_us / 1e3, r.p99_plan_time_us / 1e3, r.avg_path_length,
-                  r.start_escapes, r.contacts, 100.0 * r.contact_rate(), r.min_clearance);
+                  r.run_number, std::string(sim::to_string(r.end)).c_str(), r.sim_time_s,
+                  r.total_replans, r.failed_replans, r.p50_plan_time_us / 1e3,
+                  r.p99_plan_time_us / 1e3, r.avg_path_length, r.start_escapes, r.contacts,
+                  100.0 * r.contact_rate(), r.min_clearance);
     out += line;
   }
   const auto& a = j["aggregate"];

@@ -44,6 +44,20 @@ double divergence(const std::vector<env::Vec<3>>& previous, const std::vector<en
   return sum / static_cast<double>(samples);
 }
 
+std::string_view to_string(RunEnd e) {
+  switch (e) {
+    case RunEnd::goal_reached:
+      return "goal_reached";
+    case RunEnd::sim_time_cap:
+      return "sim_time_cap";
+    case RunEnd::wall_time_cap:
+      return "wall_time_cap";
+    case RunEnd::fluid_unstable:
+      return "fluid_unstable";
+  }
+  return "unknown";
+}
+
 double quantile(std::vector<double> xs, double q) {
   if (xs.empty()) return 0.0;
   std::sort(xs.begin(), xs.end());
@@ -59,7 +73,7 @@ void summarise_replans(RunRecord& run, const std::vector<ReplanRecord>& replans)
   std::uint64_t solved = 0, compared = 0;
   for (const ReplanRecord& r : replans) {
     if (r.run != run.run_number) continue;
-    if (r.reason == "cancelled") {  // ended with the run, never used: not a replan's answer
+    if (r.status == Status::cancelled) {  // ended with the run, never used: not an answer
       ++run.cancelled;
       continue;
     }
@@ -67,16 +81,14 @@ void summarise_replans(RunRecord& run, const std::vector<ReplanRecord>& replans)
     times.push_back(r.plan_us);
     run.start_escapes += r.start_escaped;
     run.goal_escapes += r.goal_escaped;
-    if (!r.solved) {
+    if (!r.solved()) {
       ++run.failed_replans;
-      if (r.reason == "start_blocked")
-        ++run.start_blocked;
-      else if (r.reason == "goal_blocked")
-        ++run.goal_blocked;
-      else if (r.reason == "disconnected")
-        ++run.disconnected;
-      else if (r.reason == "budget")
-        ++run.budget;
+      if (r.status == Status::no_path)
+        ++(r.blocked == plan::BlockedEnd::start  ? run.start_blocked
+           : r.blocked == plan::BlockedEnd::goal ? run.goal_blocked
+                                                 : run.disconnected);
+      else
+        ++run.budget;  // budget_exceeded or timeout
       continue;
     }
     ++solved;

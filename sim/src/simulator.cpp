@@ -126,15 +126,15 @@ ReplanRecord record_of(int run, const FinishedPlan& f, const std::string& algo, 
   r.frame = f.job.frame;
   r.sim_time_s = static_cast<double>(f.job.frame) * frame_dt;
   r.algorithm = algo;
-  r.solved = f.plan.status == Status::solved;
-  r.reason = std::string(plan::to_string(r.solved ? plan::FailReason::none : f.plan.reason));
-  r.plan_us = f.plan.total_us;
+  r.status = f.plan.status;
+  r.blocked = f.plan.blocked;
+  r.plan_us = f.plan.counters.time_ms * 1e3;
   r.world_us = f.plan.world_us;
   r.search_us = f.plan.search_us;
   r.smooth_us = f.plan.smooth_us;
-  r.expanded = f.plan.expanded;
-  r.length = r.solved ? f.plan.length : 0.0;
-  r.waypoints = r.solved ? f.plan.path.size() : 0;
+  r.expanded = f.plan.counters.expanded + f.plan.counters.samples;
+  r.length = r.solved() ? f.plan.cost : 0.0;
+  r.waypoints = r.solved() ? f.plan.path.size() : 0;
   r.start_escaped = f.plan.start_escaped;
   r.goal_escaped = f.plan.goal_escaped;
   r.incremental = f.plan.incremental;
@@ -151,6 +151,7 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
   rec.scenario = std::string(sph::to_string(o.scenario));
   rec.pace = std::string(to_string(o.pace));
   rec.controller = std::string(to_string(o.controller));
+  rec.occupancy = env::occupancy_label(o.planner.occupancy);
 
   sph::Fluid fluid(
       o.make_fluid ? o.make_fluid(run_seed) : sph::make_fluid(fluid_options(o, run_seed)),
@@ -159,7 +160,7 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
   const double dt = fluid.state().params.frame_dt;
   for (int f = 0, settle = settle_frames(o); f < settle; ++f)
     if (const auto r = fluid.advance_frame(); !r.problem.empty()) {
-      rec.end = "fluid_unstable";
+      rec.end = RunEnd::fluid_unstable;
       return;
     }
 
@@ -195,7 +196,7 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
     if (!f.error.empty()) throw RunError(f.error);
     if (!f.job.snapshot.particles.empty()) snapshot = std::move(f.job.snapshot);  // reuse it
     ReplanRecord r = record_of(run, f, o.planner.algo, dt);
-    if (r.solved) {
+    if (r.solved()) {
       if (!previous.empty()) r.divergence = divergence(previous, f.plan.path);
       previous = f.plan.path;
       robot.follow(std::move(f.plan.path));
@@ -209,6 +210,7 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
   const auto frame_wall =
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
   env::Vec<3> goal = at.goal;
+  std::optional<RunEnd> end;  // set by the frame that ends the run
   for (std::uint64_t frame = 0;; ++frame) {
     const auto frame_start = Clock::now();
     if (frame % static_cast<std::uint64_t>(o.replan_every) == 0) {
@@ -246,7 +248,7 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
     rec.frames = frame + 1;
     rec.sim_time_s = static_cast<double>(frame + 1) * dt;
     if (!report.problem.empty()) {
-      rec.end = "fluid_unstable";
+      end = RunEnd::fluid_unstable;
       break;
     }
     env::Vec<3> velocity = robot.wished_velocity(dt);
@@ -257,22 +259,22 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
     trail.push_back(robot.position());
     const double gap = clearance(fluid.state(), robot.position(), o.safety, exclude).value();
     safety.observe(gap, dt);
-    if (env::distance<3>(robot.position(), goal) <= o.goal_radius) {
-      rec.success = true;
-      rec.end = "goal_reached";
-    } else if (rec.sim_time_s >= o.max_sim_s - 1e-9) {
-      rec.end = "sim_time_cap";
-    } else if (o.max_wall_s > 0 && wall.milliseconds() >= o.max_wall_s * 1e3) {
-      rec.end = "wall_time_cap";
-    }
+    if (env::distance<3>(robot.position(), goal) <= o.goal_radius)
+      end = RunEnd::goal_reached;
+    else if (rec.sim_time_s >= o.max_sim_s - 1e-9)
+      end = RunEnd::sim_time_cap;
+    else if (o.max_wall_s > 0 && wall.milliseconds() >= o.max_wall_s * 1e3)
+      end = RunEnd::wall_time_cap;
     if (on_frame) {
       FrameView v{run,  frame + 1,     &fluid.state(), &fluid, robot.position(),
-                  goal, &robot.path(), &trail,         gap,    !rec.end.empty()};
+                  goal, &robot.path(), &trail,         gap,    end.has_value()};
       on_frame(v);
     }
-    if (!rec.end.empty()) break;
+    if (end) break;
     if (o.pace == Pace::realtime) std::this_thread::sleep_until(frame_start + frame_wall);
   }
+  rec.end = *end;
+  rec.success = rec.end == RunEnd::goal_reached;
   // The run is over: a plan still running is cancelled (and logged as such); finished ones that
   // were not applied yet are logged as the replans they were.
   thread.cancel();

@@ -50,7 +50,7 @@ TEST(Simulator, ReachesTheGoalInAnEmptyBox) {
     const sim::SimResult r = sim::run_simulation(o);
     ASSERT_EQ(r.runs.size(), 1u);
     const sim::RunRecord& run = r.runs[0];
-    EXPECT_TRUE(run.success) << algo << " " << run.end;
+    EXPECT_TRUE(run.success) << algo << " " << sim::to_string(run.end);
     EXPECT_EQ(run.failed_replans, 0u) << algo;
     // Straight across at 2 wu/s: sqrt(48) / 2 = 3.46 s, plus the first plan's frame of delay.
     EXPECT_GT(run.sim_time_s, 3.3) << algo;
@@ -74,7 +74,7 @@ TEST(Simulator, GoesAroundAStaticBox) {
       inside = inside || in;
     });
     const sim::RunRecord& run = r.runs[0];
-    EXPECT_TRUE(run.success) << algo << " " << run.end;
+    EXPECT_TRUE(run.success) << algo << " " << sim::to_string(run.end);
     EXPECT_FALSE(inside) << algo;
     EXPECT_GT(run.distance_travelled, std::sqrt(32.0) + 0.1) << algo;  // not straight through
   }
@@ -100,7 +100,7 @@ TEST(Simulator, ASealedGoalFailsAtTheCapWithoutHanging) {
     const sim::SimResult r = sim::run_simulation(o);
     const sim::RunRecord& run = r.runs[0];
     EXPECT_FALSE(run.success) << algo;
-    EXPECT_EQ(run.end, "sim_time_cap") << algo;
+    EXPECT_EQ(run.end, sim::RunEnd::sim_time_cap) << algo;
     EXPECT_EQ(run.frames, 150u) << algo;
     EXPECT_GE(run.total_replans, 14u) << algo;
     EXPECT_EQ(run.failed_replans, run.total_replans) << algo;
@@ -129,8 +129,8 @@ TEST(Simulator, LockstepRunsRepeatExactly) {
     for (std::size_t i = 0; i < results[0].replans.size(); ++i) {
       const auto &a = results[0].replans[i], &b = results[1].replans[i];
       EXPECT_EQ(a.frame, b.frame);
-      EXPECT_EQ(a.solved, b.solved);
-      EXPECT_EQ(a.reason, b.reason);
+      EXPECT_EQ(a.status, b.status);
+      EXPECT_EQ(a.blocked, b.blocked);
       EXPECT_EQ(a.expanded, b.expanded);
       EXPECT_EQ(a.length, b.length);
       EXPECT_EQ(a.divergence, b.divergence);
@@ -174,7 +174,7 @@ TEST(Simulator, DamBreakCrossing) {
     });
     const sim::RunRecord& run = r.runs[0];
     EXPECT_EQ(run.particle_count, 432u) << algo;  // 250 rounds to 6 x 6 x 12
-    EXPECT_TRUE(run.success) << algo << " " << run.end;
+    EXPECT_TRUE(run.success) << algo << " " << sim::to_string(run.end);
     EXPECT_TRUE(inside) << algo;
     EXPECT_EQ(tank, (sph::Vec3{4.0, 1.0, 3.0})) << algo;
     // Opposite end bays, 0.2..1.0 m from the end walls (the robot has moved one frame).
@@ -197,7 +197,7 @@ TEST(SimulatorThreads, RealtimeHandOffReachesTheGoal) {
   const sim::SimResult r = sim::run_simulation(o);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const sim::RunRecord& run = r.runs[0];
-  EXPECT_TRUE(run.success) << run.end;
+  EXPECT_TRUE(run.success) << sim::to_string(run.end);
   EXPECT_GT(run.total_replans, 0u);
   // Paced: a frame takes at least its 0.02 s of wall time.
   EXPECT_GE(wall, run.sim_time_s * 0.95);
@@ -217,7 +217,8 @@ TEST(SimulatorThreads, ARunningPlanIsCancelledWhenTheRunEnds) {
   EXPECT_EQ(run.cancelled, 1u);
   EXPECT_EQ(run.total_replans, 0u);  // the one plan never finished
   ASSERT_EQ(r.replans.size(), 1u);
-  EXPECT_EQ(r.replans[0].reason, "cancelled");
+  EXPECT_EQ(r.replans[0].status, Status::cancelled);
+  EXPECT_EQ(r.replans[0].reason(), "cancelled");
 }
 
 TEST(Simulator, RefusesBadOptions) {

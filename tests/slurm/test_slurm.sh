@@ -135,6 +135,26 @@ mix || fail "resuming the mixed sweep failed: $(cat "$work/mix.txt")"
 [[ $(find "$mixed/cells" -name '*.csv' -newer "$work/marker2" | grep -vc replans) -eq 1 &&
    -n $(find "$mixed/cells" -name 'particles_astar_300_realtime_reactive.csv' -newer "$work/marker2") ]] ||
   fail "the mixed resume did not rerun exactly the missing realtime cell"
+# A density occupancy added to the lockstep settings: only its 2 cells run (named by their
+# threshold, recording the rule), the seed-occupancy ones are kept; the report compares them.
+touch "$work/marker3"
+sleep 1
+PARTICLES=300 SCENARIOS=particles ALGOS=astar TRIALS=1 PACES=lockstep CONTROLLERS="seed reactive" \
+  OCCUPANCIES="particles density:0.8" MAX_SIM_S=2 THREADS=1 BIN=$bins/hpcplan \
+  bash "$root/bench/sim_sweep.sh" "$mixed" 2> "$work/occ.txt" || fail "occupancy sweep: $(cat "$work/occ.txt")"
+[[ $(grep -c "already done" "$work/occ.txt") -eq 2 &&
+   $(find "$mixed/cells" -name '*.csv' -newer "$work/marker3" | grep -vc replans) -eq 2 ]] ||
+  fail "the occupancy sweep did not add exactly its 2 cells: $(cat "$work/occ.txt")"
+grep -q ",density:0.28:0.8$" "$mixed/cells/particles_astar_300_lockstep_seed_density0.8.csv" ||
+  fail "the density cell does not record its occupancy"
+if OCCUPANCIES="density" bash "$root/bench/sim_sweep.sh" --count 2> "$work/err.txt"; then
+  fail "an occupancy without a threshold was accepted"
+fi
+grep -q "unknown occupancy density" "$work/err.txt" || fail "unclear error for a bad occupancy"
+/usr/bin/python3 "$root/scripts/sim_report.py" "$mixed" --out "$work/mixreport" > "$work/mix.md" ||
+  fail "sim_report failed on the mixed sweep"
+grep -q "Adaptive occupancy" "$work/mix.md" && grep -q "density:0.28:0.8" "$work/mix.md" &&
+  [[ -f $work/mixreport/fig6_occupancy.png ]] || fail "no occupancy table: $(cat "$work/mix.md")"
 
 # 9. submit.sh: clear errors for a missing binary and when no controller answers.
 if HPCPLAN_BIN_DIR=$work/nowhere bash "$root/slurm/submit.sh" smoke > /dev/null 2> "$work/err.txt"; then

@@ -16,14 +16,16 @@
 //   any planner of the map3d setting (birrt, rrt, thetastar, ompl:RRTConnect, ...) by name, on
 //   the particle world, or on the occupancy world with world = occupancy.
 //
-// Blocked ends. The robot and the goal are particles in a moving fluid, so a frame often puts a
-// neighbour within reach of one of them. Rather than failing, an end that is not free moves to
-// the nearest free spot within `escape` (grid: the centre of the nearest free cell within that
-// many cells, Chebyshev; continuous: the first free point on rays in 26 directions at
-// 0.05-wide steps out to `escape` cells' length), and the plan runs from (to) there. The leg
-// from the robot to its escape spot and from the goal's escape spot to the goal are the only
-// ones not collision-checked, and the plan says it took them (start_escaped, goal_escaped).
-// With no free spot in reach the replan fails with reason start_blocked or goal_blocked.
+// Blocked ends. An end that is not free moves to the nearest free spot within `escape` cells
+// (env/fluid_escape.hpp), and the plan runs from (to) there. The leg from the robot to its
+// escape spot and from the goal's escape spot to the goal are the only ones not
+// collision-checked, and the plan says it took them (start_escaped, goal_escaped). With no free
+// spot in reach the replan ends no_path with the blocked end named (reason start_blocked or
+// goal_blocked).
+//
+// Files: this dispatch (fluid_planner.cpp: the planner table, worlds, escapes, smoothing), the
+// occupancy planners (fluid_grid_planners.cpp: A*, D* Lite) and the particle-world planners
+// (fluid_particle_planners.cpp: RRT*, the registry's map3d planners).
 //
 // Threads: plan_in_fluid is reentrant; a FluidReplanner belongs to one thread at a time.
 #include <cstdint>
@@ -32,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "hpcplan/core/result.hpp"
 #include "hpcplan/core/status.hpp"
 #include "hpcplan/env/fluid_snapshot.hpp"
 #include "hpcplan/env/occupancy_world.hpp"
@@ -55,32 +58,42 @@ struct FluidPlanOptions {
   double goal_radius = 0.3;
   // map3d planners: their time budget (anytime planners refine until then) and grid resolution
   double time_s = 0.05;
-  std::stop_token cancel;  // ends a plan early (status cancelled)
 };
 
-// Why a replan failed (empty when it did not).
-enum class FailReason { none, start_blocked, goal_blocked, disconnected, budget, cancelled };
-std::string_view to_string(FailReason r);
+// Which end of a replan had no free spot within reach (the replan then ends no_path).
+enum class BlockedEnd { none, start, goal };
 
-struct FluidPlan {
-  Status status = Status::no_path;
-  FailReason reason = FailReason::disconnected;
-  std::vector<env::Vec<3>> path;  // robot .. goal after smoothing (empty unless solved)
-  double raw_length = 0.0;        // the planner's path, before smoothing
-  double search_cost = 0.0;       // grid planners: the optimum they proved, in cells
-  double length = 0.0;            // the returned path
+// The seed's failure categories, read from how a replan ended: "" (solved), start_blocked,
+// goal_blocked, disconnected (no_path otherwise), budget (budget_exceeded or timeout),
+// cancelled.
+std::string_view failure_reason(Status status, BlockedEnd blocked);
+
+// D* Lite's bookkeeping for one replan: a new search or the previous one repaired.
+enum class Incremental { none, restart, repair };
+std::string_view to_string(Incremental i);  // "", "restart", "repair"
+
+// The shared Result (path robot .. goal after smoothing, empty unless solved; cost = its
+// length; counters: expanded = grid expansions, samples = tree iterations, collision_checks,
+// time_ms = the whole replan), plus what a replan through the fluid adds.
+struct FluidPlan : Result<env::Vec<3>> {
+  BlockedEnd blocked = BlockedEnd::none;
+  double raw_length = 0.0;   // the planner's path, before smoothing
+  double search_cost = 0.0;  // grid planners: the optimum they proved, in cells
   bool start_escaped = false, goal_escaped = false;
-  // dstar_lite: "restart" (first replan, or the goal changed cell: a new search) or "repair"
-  // (the previous search updated for the moved robot and the changed cells); else empty.
-  std::string incremental;
+  // dstar_lite: restart (first replan, or the goal changed cell: a new search) or repair (the
+  // previous search updated for the moved robot and the changed cells)
+  Incremental incremental = Incremental::none;
   std::uint64_t changed_cells = 0;  // dstar_lite repairs: cells whose occupancy changed
-  std::uint64_t expanded = 0;       // grid searches: expansions; trees: iterations
-  std::uint64_t collision_checks = 0;
-  double world_us = 0.0;   // building the world from the snapshot
-  double search_us = 0.0;  // the planner
-  double smooth_us = 0.0;  // the smoother
-  double total_us = 0.0;
+  double world_us = 0.0;            // building the world from the snapshot
+  double search_us = 0.0;           // the planner
+  double smooth_us = 0.0;           // the smoother
+  std::string_view reason() const { return failure_reason(status, blocked); }
 };
+
+namespace fluid {
+enum class Runner : int;  // how a planner of the fluid runs (fluid_planner.cpp's table)
+struct DStarState;        // D* Lite's search kept between replans
+}  // namespace fluid
 
 // A planner that may keep state between the replans of one run (D* Lite does; the others are
 // stateless and simply plan each frame afresh).
@@ -93,14 +106,23 @@ class FluidReplanner {
   FluidReplanner& operator=(FluidReplanner&&) noexcept;
 
   // One replan from `robot` to `goal` through `snapshot`. `replan_index` varies the random
-  // planners' seed from one replan to the next, reproducibly.
+  // planners' seed from one replan to the next, reproducibly; `cancel` ends it early (status
+  // cancelled).
   FluidPlan plan(const env::FluidSnapshot& snapshot, const env::Vec<3>& robot,
                  const env::Vec<3>& goal, std::uint64_t replan_index, std::stop_token cancel = {});
 
  private:
-  struct Incremental;  // D* Lite's state between replans
+  void plan_on_grid(const env::FluidSnapshot& snapshot, const env::Vec<3>& robot,
+                    const env::Vec<3>& goal, std::uint64_t seed, std::stop_token cancel,
+                    FluidPlan& out);
+  void plan_on_particles(const env::FluidSnapshot& snapshot, const env::Vec<3>& robot,
+                         const env::Vec<3>& goal, std::uint64_t seed, std::stop_token cancel,
+                         FluidPlan& out);
+
   FluidPlanOptions options_;
-  std::unique_ptr<Incremental> incremental_;
+  fluid::Runner runner_;
+  bool on_grid_ = false;
+  std::unique_ptr<fluid::DStarState> dstar_;
   // The worlds, rebuilt in place at every replan (their memory is reused, not faulted in anew).
   std::unique_ptr<env::OccupancyWorld> grid_world_;
   std::unique_ptr<env::ParticleWorld> ball_world_;

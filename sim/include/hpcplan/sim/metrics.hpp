@@ -11,7 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "hpcplan/core/status.hpp"
 #include "hpcplan/env/point.hpp"
+#include "hpcplan/plan/fluid_planner.hpp"
 
 namespace hpcplan::sim {
 
@@ -20,9 +22,8 @@ struct ReplanRecord {
   std::uint64_t frame = 0;  // when it was launched
   double sim_time_s = 0.0;  // ... in simulated seconds
   std::string algorithm;
-  bool solved = false;
-  std::string reason;    // empty when solved: start_blocked, goal_blocked, disconnected, budget,
-                         // cancelled
+  Status status = Status::no_path;  // how the replan ended
+  plan::BlockedEnd blocked = plan::BlockedEnd::none;
   double plan_us = 0.0;  // the whole replan: world, search, smoothing
   double world_us = 0.0, search_us = 0.0, smooth_us = 0.0;
   std::uint64_t expanded = 0;
@@ -30,16 +31,23 @@ struct ReplanRecord {
   std::size_t waypoints = 0;
   double divergence = -1.0;  // -1: no previous successful plan to compare with
   bool start_escaped = false, goal_escaped = false;
-  std::string incremental;  // dstar_lite: restart or repair
+  plan::Incremental incremental = plan::Incremental::none;  // dstar_lite
+  bool solved() const { return status == Status::solved; }
+  // The seed's failure category (plan::failure_reason): empty when solved.
+  std::string_view reason() const { return plan::failure_reason(status, blocked); }
 };
+
+// How a run ended.
+enum class RunEnd { goal_reached, sim_time_cap, wall_time_cap, fluid_unstable };
+std::string_view to_string(RunEnd e);
 
 struct RunRecord {
   std::string scenario, algorithm, pace;
   int run_number = 0;
   std::uint64_t seed = 0;
   std::size_t particle_count = 0;
-  bool success = false;
-  std::string end;           // goal_reached, sim_time_cap, wall_time_cap, fluid_unstable
+  bool success = false;  // end == goal_reached
+  RunEnd end = RunEnd::sim_time_cap;
   double sim_time_s = 0.0;   // simulated seconds until the goal (or the cap)
   double wall_time_s = 0.0;  // wall seconds of the replanning loop
   std::uint64_t frames = 0;
@@ -58,6 +66,7 @@ struct RunRecord {
   double start_goal_distance = 0.0;
   // Safety (safety.hpp), over the frames after the robot was placed.
   std::string controller;  // seed or reactive
+  std::string occupancy;   // the grid planners' occupancy: env::occupancy_label
   std::uint64_t contacts = 0, contact_frames = 0;
   double contact_time_s = 0.0;
   double min_clearance = 0.0;            // over the run's frames (+infinity: no obstacle at all)
