@@ -42,8 +42,17 @@ die() { echo "sim_sweep: error: $*" >&2; exit 2; }
 for p in "${paces[@]}"; do [[ $p == realtime || $p == lockstep ]] || die "unknown pace $p"; done
 for c in "${controllers[@]}"; do [[ $c == seed || $c == reactive ]] || die "unknown controller $c"; done
 for o in "${occupancies[@]}"; do
-  [[ $o == particles || $o =~ ^density:[0-9]*\.?[0-9]+$ ]] ||
-    die "unknown occupancy $o (expected particles or density:THRESHOLD)"
+  [[ $o == particles || ($o =~ ^density:[0-9.eE+-]+$ &&
+    $(awk -v t="${o#density:}" 'BEGIN { print (t + 0 >= 1e-6 && t + 0 <= 1e9) }') == 1) ]] ||
+    die "unknown occupancy $o (expected particles or density:THRESHOLD, 1e-6 <= THRESHOLD <= 1e9)"
+  # Only the grid planners read the occupancy grid; RRT* and the particle world's planners would
+  # rerun the same runs under another label.
+  if [[ $o != particles ]]; then
+    for a in "${algos[@]}"; do
+      [[ $a == astar || $a == astar_euclid || $a == dstar_lite ]] ||
+        die "occupancy $o applies to the grid planners (astar, astar_euclid, dstar_lite), not $a"
+    done
+  fi
 done
 cells=$((${#particles[@]} * ${#scenarios[@]} * ${#algos[@]} * ${#paces[@]} * ${#controllers[@]} *
   ${#occupancies[@]}))

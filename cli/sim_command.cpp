@@ -2,9 +2,11 @@
 // per-replan CSV, the robot's trajectory, one JSON summary per invocation, or a readable table.
 #include <omp.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "hpcplan/core/atomic_file.hpp"
@@ -30,6 +32,7 @@ struct SimArgs {
   std::string csv, replan_log, trajectory, output, vtk_dir;
   std::uint64_t every = 5;
   bool json = false, no_timings = false;
+  std::vector<const CLI::Option*> density_options;  // given only with --occupancy density
   double memory_mb = 0.0;
 };
 
@@ -39,6 +42,17 @@ int run(SimArgs& a) {
   o.pace = sim::parse_pace(a.pace);
   o.controller = sim::parse_controller(a.controller);
   o.planner.occupancy.rule = env::parse_occupancy_rule(a.occupancy);
+  // An option that would be silently ignored is an error.
+  if (o.planner.occupancy.rule != env::OccupancyRule::density &&
+      std::any_of(a.density_options.begin(), a.density_options.end(),
+                  [](const CLI::Option* opt) { return opt->count() > 0; }))
+    throw InputError("--density-support and --density-threshold need --occupancy density");
+  if (o.planner.occupancy.rule == env::OccupancyRule::density &&
+      !plan::FluidReplanner(o.planner).plans_on_grid())
+    throw InputError(
+        "--occupancy applies to the grid planners (astar, astar_euclid, dstar_lite, "
+        "or a map3d planner with --world occupancy), not " +
+        o.planner.algo);
   sim::validate(o);
   const std::uint64_t need = sph::estimated_bytes(sim::fluid_options(o, o.seed));
   const double budget = a.memory_mb > 0.0 ? a.memory_mb * 1048576.0
@@ -170,14 +184,15 @@ Action register_sim_command(CLI::App& app) {
                   "centre, the seed's) | density (the SPH-interpolated density reaches "
                   "--density-threshold)")
       ->capture_default_str();
-  add_number(cmd, "--density-support", o.planner.occupancy.density_support,
-             "occupancy density: the poly6 kernel's support radius", 1e-6, 1e3)
-      ->capture_default_str();
-  add_number(cmd, "--density-threshold", o.planner.occupancy.density_threshold,
-             "occupancy density: particle equivalents that block a cell (a lone particle on "
-             "the centre counts 1)",
-             1e-6, 1e9)
-      ->capture_default_str();
+  a.density_options = {
+      add_number(cmd, "--density-support", o.planner.occupancy.density_support,
+                 "occupancy density: the poly6 kernel's support radius", 1e-6, 1e3)
+          ->capture_default_str(),
+      add_number(cmd, "--density-threshold", o.planner.occupancy.density_threshold,
+                 "occupancy density: particle equivalents that block a cell (a lone particle on "
+                 "the centre counts 1)",
+                 1e-6, 1e9)
+          ->capture_default_str()};
   add_number(cmd, "--escape", o.planner.escape_cells,
              "How far (cells of 0.2) a blocked robot or goal may move to plan", 0, 100)
       ->capture_default_str();

@@ -121,8 +121,8 @@ def main():
     all_runs, all_replans = runs, replans
     runs = [r for r in runs if r["occupancy"] == "particles"]
     replans = [r for r in replans if r["occupancy"] == "particles"]
-    if not runs:
-        sys.exit("sim_report: error: no run with the seed's occupancy (particles) found")
+    if not runs:  # a density-only folder: its own runs stand in for the seed's tables
+        runs, replans = all_runs, all_replans
     out = a.out or (a.results[0] if os.path.isdir(a.results[0]) else os.path.dirname(a.results[0]) or ".")
     os.makedirs(out, exist_ok=True)
     md = []
@@ -145,7 +145,9 @@ def main():
 
 def contact_tables(runs, out, md):
     """Frames in contact per setting, and the reactive layer against the seed's controller."""
-    if not runs or "contact_frames" not in runs[0]:
+    # Runs from before the safety metrics have no contact columns: left out here.
+    runs = [r for r in runs if r.get("contact_frames") not in (None, "")]
+    if not runs:
         return
     lab = lambda x: LABEL.get(x, x)  # noqa: E731
     algos = sorted({r["algorithm"] for r in runs}, key=lambda x: list(LABEL).index(x) if x in LABEL else 99)
@@ -166,7 +168,8 @@ def contact_tables(runs, out, md):
     md.append("Frames in contact: frames whose clearance (robot ball of radius 0.05 against particle "
               "balls of 0.05 and the boxes, on the physics frame) is negative, over every frame of "
               "the runs; p95: the 95th percentile of the runs' own rates; contacts: entries into "
-              "contact per run. Time to goal: successful runs, mean (s).\n")
+              "contact per run. Time to goal: successful runs, mean (s). Where both controllers "
+              "ran a planner and pacing, only the scenarios and particle counts both ran count.\n")
     head = "| Scenario | Planner | Pacing | " + " | ".join(
         f"{c}: frames in contact (p95) | {c}: contacts/run | {c}: max overlap | {c}: time to goal | {c}: success"
         for c in controllers)
@@ -180,9 +183,15 @@ def contact_tables(runs, out, md):
         for x in algos:
             for s in scenarios + ["all"]:
                 cells, t = [], {}
+                # With both controllers, the settings both ran (scenario and particle count), so
+                # that the ratio compares like with like while a sweep is incomplete.
+                ran = [{(r["scenario"], r["particle_count"]) for r in runs if r["pace"] == pace and
+                        r["algorithm"] == x and r["controller"] == c} for c in controllers]
+                both = set.intersection(*ran) if len(controllers) == 2 and all(ran) else None
                 for c in controllers:
                     rs = [r for r in runs if r["pace"] == pace and r["algorithm"] == x and
-                          r["controller"] == c and (s == "all" or r["scenario"] == s)]
+                          r["controller"] == c and (s == "all" or r["scenario"] == s) and
+                          (both is None or (r["scenario"], r["particle_count"]) in both)]
                     if not rs:
                         cells += ["–"] * 5
                         t[c] = math.nan
@@ -231,6 +240,7 @@ def contact_tables(runs, out, md):
 def occupancy_tables(runs, replans, out, md):
     """Each density occupancy against the seed's, on the settings (scenario, planner, pacing,
     controller, particle count) both ran."""
+    runs = [r for r in runs if r.get("contact_frames") not in (None, "")]
     rules = sorted({r["occupancy"] for r in runs} - {"particles"})
     if not rules:
         return

@@ -158,21 +158,31 @@ assert r["wall_time_s"] >= 0.95 * r["time_to_goal_s"], r
 print("sim_cli: realtime ok")
 PY
 
-# Adaptive occupancy: the run says which rule its grid used, in the JSON and in each CSV row; a
-# threshold above any density the fluid reaches blocks no particle cell, so no replan of A* can
-# find its ends blocked by the fluid.
-"$bin" sim "${common[@]}" --algo astar --occupancy density --density-threshold 1e6 --no-timings \
-  --csv "$dir/density.csv" --replan-log "$dir/density_replans.csv" --output "$dir/density.json" \
-  > /dev/null || fail "density occupancy run failed"
-python3 - "$dir/density.csv" "$dir/density.json" "$dir/density_replans.csv" <<'PY' || exit 1
+# Adaptive occupancy: the run says which rule its grid used, in the JSON and in each CSV row. In
+# the scenario without boxes, a threshold above any density the fluid reaches blocks no cell: every
+# replan is solved as the straight segment (2 waypoints), no end ever escapes; the seed's rule on
+# the same scene blocks cells (escapes, bent paths), so a rule that were ignored would fail here.
+occ=(--particles 1000 --scenario particles --runs 2 --seed 3 --threads 2 --settle-frames 40
+     --max-sim-s 12 --algo astar --no-timings)
+"$bin" sim "${occ[@]}" --occupancy density --density-threshold 1e6 --csv "$dir/density.csv" \
+  --replan-log "$dir/density_replans.csv" --output "$dir/density.json" > /dev/null ||
+  fail "density occupancy run failed"
+"$bin" sim "${occ[@]}" --replan-log "$dir/seedrule_replans.csv" > /dev/null ||
+  fail "seed-occupancy run failed"
+python3 - "$dir/density.csv" "$dir/density.json" "$dir/density_replans.csv" \
+  "$dir/seedrule_replans.csv" <<'PY' || exit 1
 import csv, json, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 j = json.load(open(sys.argv[2]))
 assert j["occupancy"] == {"rule": "density", "cell": 0.2, "density_support": 0.28,
                           "density_threshold": 1e6}, j["occupancy"]
-assert all(r["occupancy"] == "density:0.28:1e+06" for r in rows), rows
-reps = list(csv.DictReader(open(sys.argv[3])))
-assert reps and all(r["reason"] not in ("start_blocked", "goal_blocked") for r in reps)
+assert rows and all(r["occupancy"] == "density:0.28:1e+06" for r in rows), rows
+dens = list(csv.DictReader(open(sys.argv[3])))
+seed = list(csv.DictReader(open(sys.argv[4])))
+assert dens and all(r["status"] == "solved" and r["waypoints"] == "2" and
+                    r["start_escaped"] == r["goal_escaped"] == "0" for r in dens), dens
+assert any(r["start_escaped"] == "1" or r["goal_escaped"] == "1" for r in seed), seed
+assert any(int(r["waypoints"]) > 2 for r in seed if r["status"] == "solved"), seed
 print("sim_cli: density occupancy ok")
 PY
 
@@ -204,6 +214,8 @@ bad "controller" --controller fast
 bad "occupancy" --occupancy fluid
 bad "density-threshold" --occupancy density --density-threshold 0
 bad "density-support" --occupancy density --density-support -1
+bad "need --occupancy density" --density-threshold 2
+bad "applies to the grid planners" --occupancy density --algo rrtstar
 bad "robot-radius" --robot-radius -1
 bad "reactive-horizon" --reactive-horizon 0
 bad "replan-every" --replan-every 0

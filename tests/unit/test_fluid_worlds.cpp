@@ -135,11 +135,18 @@ TEST(OccupancyWorld, DensityRuleAgainstTheSeedsRule) {
   env::FluidSnapshot lone;
   lone.domain = {{0, 0, 0}, {2, 2, 2}};
   for (double x : {0.33, 0.97, 1.51}) lone.particles.push_back({x, 0.41 + 0.3 * x, 1.77 - 0.5 * x});
+  // Two more whose nearest cell centre (cells of 0.2, centres at 0.1 + 0.2 k) lies 0.139 and
+  // 0.141 away: blocked and free under both rules (a threshold off by 0.01 either way, or a
+  // support off by 1%, flips one of them).
+  lone.particles.push_back({0.3 + 0.139, 1.7, 0.1});
+  lone.particles.push_back({1.5 + 0.141, 1.7, 1.7});
   env::OccupancyConfig seed_rule, density_rule;
   density_rule.rule = env::OccupancyRule::density;
   const env::OccupancyWorld a(lone, seed_rule), b(lone, density_rule);
   ASSERT_GT(a.occupied_count(), 0u);
   for (std::uint32_t i = 0; i < a.cell_count(); ++i) EXPECT_EQ(a.occupied(i), b.occupied(i)) << i;
+  EXPECT_TRUE(b.occupied({1, 8, 0}));   // centre (0.3, 1.7, 0.1), 0.139 away
+  EXPECT_FALSE(b.occupied({7, 8, 8}));  // centre (1.5, 1.7, 1.7), 0.141 away
 
   // A crowd: particles 0.24 apart; a lattice cube's middle lies 0.21 from its 8 corners, beyond
   // the seed's 0.14, yet their kernels sum there to 8 (1 - 0.21^2 / 0.28^2)^3 = 0.72.

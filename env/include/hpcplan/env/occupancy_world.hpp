@@ -10,9 +10,9 @@
 // fluid's SPH-interpolated density at its centre reaches `density_threshold`, counted in
 // particle equivalents: rho(x) = sum_j W(|x - x_j|) / W(0) with the fluid's own poly6 kernel
 // (sph/kernels.hpp) of support `density_support` (a lone particle on the centre counts 1). The
-// defaults (support 0.28, threshold 0.42) block a lone particle out to 0.14 exactly as the seed's
-// rule does ((1 - 0.14^2 / 0.28^2)^3 = 0.42); where particles crowd, their kernels add up and the
-// blocked region grows to cover the gaps between them; a higher threshold lets sparse spray
+// defaults (support 0.28, threshold 0.42) block a lone particle out to 0.1403, the seed's 0.14 to
+// within 0.3 mm ((1 - 0.14^2 / 0.28^2)^3 = 0.4219); where particles crowd, their kernels add up and
+// the blocked region grows to cover the gaps between them; a higher threshold lets sparse spray
 // through (above 1, no lone particle blocks at all) while the bulk stays blocked. Boxes are
 // blocked as in the seed's rule.
 //  - a point is free when it lies in the box and its cell is free;

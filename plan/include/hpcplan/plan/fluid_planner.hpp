@@ -105,6 +105,10 @@ class FluidReplanner {
   FluidReplanner(FluidReplanner&&) noexcept;
   FluidReplanner& operator=(FluidReplanner&&) noexcept;
 
+  // Whether this planner searches the occupancy grid (A*, A* Euclid, D* Lite, or a map3d
+  // planner with world = occupancy): only then does FluidPlanOptions::occupancy matter.
+  bool plans_on_grid() const { return on_grid_; }
+
   // One replan from `robot` to `goal` through `snapshot`. `replan_index` varies the random
   // planners' seed from one replan to the next, reproducibly; `cancel` ends it early (status
   // cancelled).

@@ -12,7 +12,10 @@
 // exact for straight-line motion: with d = robot - obstacle and w = v - u, the gap is smallest
 // at t* = clamp(-d.w / w.w, 0, T). Candidates are the asked-for velocity, zero, and 64
 // directions spread evenly over the sphere (a Fibonacci lattice, plus the asked-for direction)
-// at full and half speed.
+// at full and half speed. Only particles within reach + margin + (max speed + their speed) x
+// max(T, dt) of the robot are looked at; the robot's first step (up to max speed x dt, 0.04 m at
+// the seed's speed and frame) is not in that bound, so a particle up to that much farther that a
+// candidate would meet within the horizon is missed (the sweeps of issue 32 ran with this bound).
 //
 // The seed's controller is this layer switched off (Controller::seed): the asked-for velocity
 // is always used.
