@@ -42,25 +42,25 @@ std::string sim_runs_csv(const std::vector<sim::RunRecord>& runs, bool header, b
         "start_goal_distance,seed,pace,controller,contact_rate,reactive_overrides,occupancy\n";
   auto t = [&](double v) { return timings ? num(v) : std::string(); };
   for (const sim::RunRecord& r : runs) {
-    out += r.scenario + "," + r.algorithm + "," + std::to_string(r.run_number) + "," +
-           (r.success ? "1" : "0") + "," + num(r.sim_time_s) + "," +
-           std::to_string(r.total_replans) + "," + std::to_string(r.failed_replans) + "," +
-           t(r.avg_plan_time_us) + "," + t(r.min_plan_time_us) + "," + t(r.max_plan_time_us) + "," +
-           num(r.avg_path_length) + "," + num(r.avg_path_nodes) + "," + num(r.avg_path_divergence) +
-           "," + std::to_string(r.particle_count) + "," + std::to_string(r.contacts) + "," +
-           std::to_string(r.contact_frames) + "," + num(r.contact_time_s) + "," +
-           num(r.min_clearance) + "," + num(r.max_overlap) + "," + num(r.seed_avg_path_length) +
-           "," + (r.success ? num(r.sim_time_s) : "") + "," + (r.success ? t(r.wall_time_s) : "") +
-           "," + t(r.p50_plan_time_us) + "," + t(r.p95_plan_time_us) + "," + t(r.p99_plan_time_us) +
-           "," + std::string(sim::to_string(r.end)) + "," + std::to_string(r.start_blocked) + "," +
-           std::to_string(r.goal_blocked) + "," + std::to_string(r.disconnected) + "," +
-           std::to_string(r.budget) + "," + std::to_string(r.cancelled) + "," +
-           std::to_string(r.start_escapes) + "," + std::to_string(r.goal_escapes) + "," +
-           t(r.sph_ms_per_frame) + "," + t(r.snapshot_ms) + "," + std::to_string(r.frames) + "," +
-           num(r.distance_travelled) + "," + num(r.start_goal_distance) + "," +
-           std::to_string(r.seed) + "," + r.pace + "," + r.controller + "," +
-           num(r.contact_rate()) + "," + std::to_string(r.reactive_overrides) + "," + r.occupancy +
-           "\n";
+    out +=
+        r.scenario + "," + r.algorithm + "," + std::to_string(r.run_number) + "," +
+        (r.success() ? "1" : "0") + "," + num(r.sim_time_s) + "," +
+        std::to_string(r.total_replans) + "," + std::to_string(r.failed_replans) + "," +
+        t(r.avg_plan_time_us) + "," + t(r.min_plan_time_us) + "," + t(r.max_plan_time_us) + "," +
+        num(r.avg_path_length) + "," + num(r.avg_path_nodes) + "," + num(r.avg_path_divergence) +
+        "," + std::to_string(r.particle_count) + "," + std::to_string(r.contacts) + "," +
+        std::to_string(r.contact_frames) + "," + num(r.contact_time_s) + "," +
+        num(r.min_clearance) + "," + num(r.max_overlap) + "," + num(r.seed_avg_path_length) + "," +
+        (r.success() ? num(r.sim_time_s) : "") + "," + (r.success() ? t(r.wall_time_s) : "") + "," +
+        t(r.p50_plan_time_us) + "," + t(r.p95_plan_time_us) + "," + t(r.p99_plan_time_us) + "," +
+        std::string(sim::to_string(r.end)) + "," + std::to_string(r.start_blocked) + "," +
+        std::to_string(r.goal_blocked) + "," + std::to_string(r.disconnected) + "," +
+        std::to_string(r.budget) + "," + std::to_string(r.cancelled) + "," +
+        std::to_string(r.start_escapes) + "," + std::to_string(r.goal_escapes) + "," +
+        t(r.sph_ms_per_frame) + "," + t(r.snapshot_ms) + "," + std::to_string(r.frames) + "," +
+        num(r.distance_travelled) + "," + num(r.start_goal_distance) + "," +
+        std::to_string(r.seed) + "," + r.pace + "," + r.controller + "," + num(r.contact_rate()) +
+        "," + std::to_string(r.reactive_overrides) + "," + r.occupancy + "\n";
   }
   return out;
 }
@@ -121,7 +121,7 @@ nlohmann::json to_json(const SimInvocation& s) {
   for (const sim::RunRecord& r : s.result.runs) {
     nlohmann::json row;
     row["run_number"] = r.run_number;
-    row["success"] = r.success;
+    row["success"] = r.success();
     row["end"] = std::string(sim::to_string(r.end));
     row["time_to_goal_s"] = r.sim_time_s;
     row["wall_time_s"] = r.wall_time_s;
@@ -160,7 +160,7 @@ nlohmann::json to_json(const SimInvocation& s) {
     contact_frames += r.contact_frames;
     frames += r.frames;
     max_overlap = std::max(max_overlap, r.max_overlap);
-    if (r.success) ++successes, ttg.push_back(r.sim_time_s);
+    if (r.success()) ++successes, ttg.push_back(r.sim_time_s);
     replans += r.total_replans;
     failed += r.failed_replans;
     escapes += r.start_escapes;

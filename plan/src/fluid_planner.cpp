@@ -64,6 +64,17 @@ bool searches_the_grid(Runner r) {
   return r == Runner::astar_octile || r == Runner::astar_euclid || r == Runner::dstar_lite;
 }
 
+// The world of this frame, rebuilt in the memory of the previous replan's (built on the first).
+template <class World, class Config>
+const World& rebuilt(std::unique_ptr<World>& world, const env::FluidSnapshot& snapshot,
+                     const Config& config) {
+  if (world)
+    world->rebuild(snapshot, config);
+  else
+    world = std::make_unique<World>(snapshot, config);
+  return *world;
+}
+
 // Robot .. goal: the escape legs around the planner's path (only when they were taken).
 std::vector<Vec3> with_ends(const Vec3& robot, const Vec3& goal, std::vector<Vec3> inner) {
   std::vector<Vec3> path;
@@ -165,11 +176,7 @@ void FluidReplanner::plan_on_grid(const env::FluidSnapshot& snapshot, const Vec3
                                   FluidPlan& out) {
   const FluidPlanOptions& o = options_;
   Stopwatch clock;
-  if (grid_world_)
-    grid_world_->rebuild(snapshot, o.occupancy);
-  else
-    grid_world_ = std::make_unique<env::OccupancyWorld>(snapshot, o.occupancy);
-  const env::OccupancyWorld& world = *grid_world_;
+  const env::OccupancyWorld& world = rebuilt(grid_world_, snapshot, o.occupancy);
   out.world_us = clock.milliseconds() * 1e3;
   const auto from = env::escape_cell(world, robot, o.escape_cells);
   const auto to = env::escape_cell(world, goal, o.escape_cells);
@@ -208,11 +215,7 @@ void FluidReplanner::plan_on_particles(const env::FluidSnapshot& snapshot, const
                                        FluidPlan& out) {
   const FluidPlanOptions& o = options_;
   Stopwatch clock;
-  if (ball_world_)
-    ball_world_->rebuild(snapshot, o.particles);
-  else
-    ball_world_ = std::make_unique<env::ParticleWorld>(snapshot, o.particles);
-  const env::ParticleWorld& world = *ball_world_;
+  const env::ParticleWorld& world = rebuilt(ball_world_, snapshot, o.particles);
   out.world_us = clock.milliseconds() * 1e3;
   const double reach = o.escape_cells * o.occupancy.cell;
   const auto a = env::escape_point(world, robot, reach);

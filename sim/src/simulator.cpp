@@ -274,7 +274,6 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
     if (o.pace == Pace::realtime) std::this_thread::sleep_until(frame_start + frame_wall);
   }
   rec.end = *end;
-  rec.success = rec.end == RunEnd::goal_reached;
   // The run is over: a plan still running is cancelled (and logged as such); finished ones that
   // were not applied yet are logged as the replans they were.
   thread.cancel();

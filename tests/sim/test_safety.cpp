@@ -166,7 +166,7 @@ TEST(Simulator, TheReactiveLayerNeverAddsContactsAndReachesTheGoal) {
       std::uint64_t plain_frames = 0, reactive_frames = 0;
       for (int k = 0; k < 2; ++k) {
         const sim::RunRecord &p = plain.runs[k], &q = reactive.runs[k];
-        EXPECT_TRUE(q.success) << algo << " run " << k + 1 << ": " << sim::to_string(q.end);
+        EXPECT_TRUE(q.success()) << algo << " run " << k + 1 << ": " << sim::to_string(q.end);
         EXPECT_LE(q.contact_frames, p.contact_frames) << algo << " run " << k + 1;
         EXPECT_GT(q.reactive_overrides, 0u) << algo;
         EXPECT_EQ(q.controller, "reactive");

@@ -50,7 +50,7 @@ TEST(Simulator, ReachesTheGoalInAnEmptyBox) {
     const sim::SimResult r = sim::run_simulation(o);
     ASSERT_EQ(r.runs.size(), 1u);
     const sim::RunRecord& run = r.runs[0];
-    EXPECT_TRUE(run.success) << algo << " " << sim::to_string(run.end);
+    EXPECT_TRUE(run.success()) << algo << " " << sim::to_string(run.end);
     EXPECT_EQ(run.failed_replans, 0u) << algo;
     // Straight across at 2 wu/s: sqrt(48) / 2 = 3.46 s, plus the first plan's frame of delay.
     EXPECT_GT(run.sim_time_s, 3.3) << algo;
@@ -74,7 +74,7 @@ TEST(Simulator, GoesAroundAStaticBox) {
       inside = inside || in;
     });
     const sim::RunRecord& run = r.runs[0];
-    EXPECT_TRUE(run.success) << algo << " " << sim::to_string(run.end);
+    EXPECT_TRUE(run.success()) << algo << " " << sim::to_string(run.end);
     EXPECT_FALSE(inside) << algo;
     EXPECT_GT(run.distance_travelled, std::sqrt(32.0) + 0.1) << algo;  // not straight through
   }
@@ -99,7 +99,7 @@ TEST(Simulator, ASealedGoalFailsAtTheCapWithoutHanging) {
     o.max_sim_s = 3.0;
     const sim::SimResult r = sim::run_simulation(o);
     const sim::RunRecord& run = r.runs[0];
-    EXPECT_FALSE(run.success) << algo;
+    EXPECT_FALSE(run.success()) << algo;
     EXPECT_EQ(run.end, sim::RunEnd::sim_time_cap) << algo;
     EXPECT_EQ(run.frames, 150u) << algo;
     EXPECT_GE(run.total_replans, 14u) << algo;
@@ -174,7 +174,7 @@ TEST(Simulator, DamBreakCrossing) {
     });
     const sim::RunRecord& run = r.runs[0];
     EXPECT_EQ(run.particle_count, 432u) << algo;  // 250 rounds to 6 x 6 x 12
-    EXPECT_TRUE(run.success) << algo << " " << sim::to_string(run.end);
+    EXPECT_TRUE(run.success()) << algo << " " << sim::to_string(run.end);
     EXPECT_TRUE(inside) << algo;
     EXPECT_EQ(tank, (sph::Vec3{4.0, 1.0, 3.0})) << algo;
     // Opposite end bays, 0.2..1.0 m from the end walls (the robot has moved one frame).
@@ -197,7 +197,7 @@ TEST(SimulatorThreads, RealtimeHandOffReachesTheGoal) {
   const sim::SimResult r = sim::run_simulation(o);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const sim::RunRecord& run = r.runs[0];
-  EXPECT_TRUE(run.success) << sim::to_string(run.end);
+  EXPECT_TRUE(run.success()) << sim::to_string(run.end);
   EXPECT_GT(run.total_replans, 0u);
   // Paced: a frame takes at least its 0.02 s of wall time.
   EXPECT_GE(wall, run.sim_time_s * 0.95);
@@ -213,7 +213,7 @@ TEST(SimulatorThreads, ARunningPlanIsCancelledWhenTheRunEnds) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_LT(wall, 20.0);
   const sim::RunRecord& run = r.runs[0];
-  EXPECT_FALSE(run.success);
+  EXPECT_FALSE(run.success());
   EXPECT_EQ(run.cancelled, 1u);
   EXPECT_EQ(run.total_replans, 0u);  // the one plan never finished
   ASSERT_EQ(r.replans.size(), 1u);

@@ -2,6 +2,7 @@
 // searches against Dijkstra, and D* Lite's repairs against a fresh search.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <queue>
 #include <random>
@@ -42,6 +43,20 @@ env::FluidSnapshot random_snapshot(std::uint64_t seed, double side, int particle
   return s;
 }
 
+// Whether cell (x, y, z) of side h overlaps an obstacle box grown by the inflation, with positive
+// volume (the seed's rule for boxes, under either particle rule).
+bool in_grown_box(const env::FluidSnapshot& snap, const env::OccupancyConfig& cfg,
+                  const std::array<int, 3>& cell, double h) {
+  for (const auto& b : snap.boxes) {
+    bool overlap = true;
+    for (int k = 0; k < 3; ++k)
+      overlap = overlap && b.lo[k] - cfg.box_inflation < (cell[k] + 1) * h &&
+                b.hi[k] + cfg.box_inflation > cell[k] * h;
+    if (overlap) return true;
+  }
+  return false;
+}
+
 TEST(OccupancyWorld, CoversTheBoxExactlyAndMatchesBruteForce) {
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     const double side = 1.0 + 0.37 * static_cast<double>(seed);  // not a multiple of 0.2
@@ -65,14 +80,7 @@ TEST(OccupancyWorld, CoversTheBoxExactlyAndMatchesBruteForce) {
             for (int k = 0; k < 3; ++k) d2 += (p[k] - c[k]) * (p[k] - c[k]);
             expect = expect || d2 <= cfg.particle_radius * cfg.particle_radius;
           }
-          for (const auto& b : snap.boxes) {
-            bool overlap = true;
-            const int cell[3] = {x, y, z};
-            for (int k = 0; k < 3; ++k)
-              overlap = overlap && b.lo[k] - cfg.box_inflation < (cell[k] + 1) * h &&
-                        b.hi[k] + cfg.box_inflation > cell[k] * h;
-            expect = expect || overlap;
-          }
+          expect = expect || in_grown_box(snap, cfg, {x, y, z}, h);
           ASSERT_EQ(w.occupied({x, y, z}), expect) << "cell " << x << "," << y << "," << z;
           occupied += expect;
         }
@@ -108,15 +116,7 @@ TEST(OccupancyWorld, DensityRuleMatchesBruteForce) {
           }
           const std::uint32_t i = w.index({x, y, z});
           ASSERT_NEAR(w.density()[i], rho, 1e-5 * (1 + rho));
-          bool in_box = false;
-          for (const auto& b : snap.boxes) {
-            bool overlap = true;
-            const int cell[3] = {x, y, z};
-            for (int k = 0; k < 3; ++k)
-              overlap = overlap && b.lo[k] - cfg.box_inflation < (cell[k] + 1) * h &&
-                        b.hi[k] + cfg.box_inflation > cell[k] * h;
-            in_box = in_box || overlap;
-          }
+          const bool in_box = in_grown_box(snap, cfg, {x, y, z}, h);
           // (Far from the threshold, so float rounding cannot flip a cell.)
           if (std::abs(rho - cfg.density_threshold) > 1e-4) {
             ASSERT_EQ(w.occupied(i), in_box || rho >= cfg.density_threshold)

@@ -46,8 +46,8 @@ struct RunRecord {
   int run_number = 0;
   std::uint64_t seed = 0;
   std::size_t particle_count = 0;
-  bool success = false;  // end == goal_reached
   RunEnd end = RunEnd::sim_time_cap;
+  bool success() const { return end == RunEnd::goal_reached; }
   double sim_time_s = 0.0;   // simulated seconds until the goal (or the cap)
   double wall_time_s = 0.0;  // wall seconds of the replanning loop
   std::uint64_t frames = 0;
