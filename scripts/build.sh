@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 dir=${1:-build}
 shift || true
 config=(-DCMAKE_BUILD_TYPE=Release -DHPCPLAN_BUILD_TESTS=ON -DHPCPLAN_BUILD_BENCH=ON
-  -DHPCPLAN_BUILD_CLI=ON -DHPCPLAN_SANITIZE=)
+  -DHPCPLAN_BUILD_CLI=ON -DHPCPLAN_SANITIZE= -DHPCPLAN_REQUIRE_CUDA=OFF)
 targets=()
 while (($#)); do
   case $1 in

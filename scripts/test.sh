@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite: install, build, run every test; then the unit, CLI, OMPL, MPI, fluid and
 # simulator suites again under AddressSanitizer + UndefinedBehaviorSanitizer, and the threaded
-# tests (stop token, cancellation, planners sharing a world, the simulator's planner thread)
-# under ThreadSanitizer.
+# tests (stop token, cancellation, planners sharing a world, the simulator's planner thread,
+# the dense engine's and the fluid's OpenMP loops) under ThreadSanitizer.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -25,7 +25,14 @@ if [[ ! -f $archer ]]; then
 fi
 
 echo "== build (Release)"
-bash scripts/build.sh build
+# Where a CUDA compiler is installed (the CI image has one), the CUDA backend must build: its
+# kernels include the CPU's physics source, so this is the check that the GPU side still
+# compiles after a CPU change. Without one, the build is the CPU one.
+cuda_required=()
+if command -v nvcc >/dev/null || [[ -x /usr/local/cuda/bin/nvcc ]]; then
+  cuda_required=(-DHPCPLAN_REQUIRE_CUDA=ON)
+fi
+bash scripts/build.sh build "${cuda_required[@]}"
 echo "== tests (Release)"
 (cd build && ctest_run --timeout 600)
 
@@ -60,7 +67,8 @@ echo "== build (ThreadSanitizer: threaded tests)"
 # The compilers as cache options, not CC/CXX, which a tree configured earlier with g++ ignores.
 bash scripts/build.sh build-tsan -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo "$sanitizer_flags" -DHPCPLAN_SANITIZE=thread -DHPCPLAN_BUILD_BENCH=OFF -DHPCPLAN_BUILD_CLI=OFF \
-  --target hpcplan_thread_tests --target hpcplan_sim_tests --target hpcplan_dense_thread_tests
+  --target hpcplan_thread_tests --target hpcplan_sim_tests --target hpcplan_dense_thread_tests \
+  --target hpcplan_sph_tests
 echo "== tests (ThreadSanitizer)"
 # ignore_noninstrumented_modules: accesses inside the uninstrumented runtime itself are Archer's
 # to describe, not TSan's to report.

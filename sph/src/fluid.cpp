@@ -3,8 +3,8 @@
 #include <cmath>
 #include <string>
 
-#include "hpcplan/core/splitmix64.hpp"
 #include "hpcplan/core/stopwatch.hpp"
+#include "hpcplan/sph/physics.hpp"
 
 namespace hpcplan::sph {
 
@@ -18,18 +18,13 @@ Fluid::Fluid(FluidState initial, std::string_view backend)
 // seeded by (run seed, frame, particle id).
 void StepBackend::agitate(FluidState& s, std::uint64_t frame) {
   Particles& p = s.particles;
-  const FluidParams& f = s.params;
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t i = 0; i < n; ++i) {
     if (p.wall[i]) continue;
-    SplitMix64 rng(splitmix64_mix(s.seed ^ splitmix64_mix(frame ^ (std::uint64_t{p.id[i]} << 32))));
-    auto uniform = [&](double lo, double hi) {
-      return lo + (hi - lo) * static_cast<double>(rng.next() >> 11) * 0x1.0p-53;
-    };
-    p.vx[i] = uniform(-f.kick_horizontal, f.kick_horizontal);
-    p.vy[i] = uniform(-f.kick_horizontal, f.kick_horizontal);
-    p.vz[i] = uniform(0.0, f.kick_up);
+    double v[3];
+    agitation_velocity(s.params, s.seed, frame, p.id[i], v);
+    p.vx[i] = v[0], p.vy[i] = v[1], p.vz[i] = v[2];
   }
 }
 
@@ -82,24 +77,31 @@ const FluidState& Fluid::full_state() const {
 
 namespace {
 
-// What is wrong with fluid particle i, or empty.
+// What is wrong with fluid particle i (physics/push_out.hpp's check, which the CUDA backend
+// runs too), in words; empty when nothing is.
 std::string problem_of(const FluidState& s, std::size_t i) {
   const Particles& p = s.particles;
-  const Vec3 x = p.position(i), v = p.velocity(i);
-  for (int k = 0; k < 3; ++k) {
-    if (!std::isfinite(x[k])) return "non-finite position of particle " + std::to_string(p.id[i]);
-    if (!std::isfinite(v[k])) return "non-finite velocity of particle " + std::to_string(p.id[i]);
-  }
-  if (!std::isfinite(p.rho[i]) || !std::isfinite(p.p[i]))
-    return "non-finite density or pressure of particle " + std::to_string(p.id[i]);
-  if (!s.domain.contains(x)) return "particle " + std::to_string(p.id[i]) + " left the domain";
-  for (const MovingBox& b : s.boxes)
-    if (b.box.interior_contains(x))
-      return "particle " + std::to_string(p.id[i]) + " is inside an obstacle box";
-  return "";
+  const double x[3] = {p.x[i], p.y[i], p.z[i]}, v[3] = {p.vx[i], p.vy[i], p.vz[i]};
+  const ParticleProblem kind =
+      particle_problem(s.domain, s.boxes.data(), static_cast<int>(s.boxes.size()), x, v,
+                       p.rho[i], p.p[i]);
+  return describe(kind, p.id[i]);
 }
 
 }  // namespace
+
+std::string describe(ParticleProblem kind, std::uint32_t id) {
+  const std::string who = "particle " + std::to_string(id);
+  switch (kind) {
+    case ParticleProblem::none: return "";
+    case ParticleProblem::position: return "non-finite position of " + who;
+    case ParticleProblem::velocity: return "non-finite velocity of " + who;
+    case ParticleProblem::density: return "non-finite density or pressure of " + who;
+    case ParticleProblem::outside: return who + " left the domain";
+    case ParticleProblem::in_box: return who + " is inside an obstacle box";
+  }
+  return who + " is unsound";
+}
 
 std::string first_problem(const FluidState& s) {
   // The scan runs in parallel; the lowest bad index is reported, whatever the thread count.

@@ -1,11 +1,14 @@
 #include "hpcplan/sph/particles.hpp"
 
 #include <cstddef>
+#include <tuple>
 
 namespace hpcplan::sph {
 
 namespace {
 
+// Entry k of `a` becomes old entry order[k]; `scratch` (any contents) is reused across the
+// arrays of one type and comes back holding the old array.
 template <class T>
 void gather(std::vector<T>& a, std::span<const std::uint32_t> order, std::vector<T>& scratch) {
   scratch.resize(a.size());
@@ -18,10 +21,9 @@ void gather(std::vector<T>& a, std::span<const std::uint32_t> order, std::vector
 }  // namespace
 
 void Particles::resize(std::size_t n) {
-  for (auto* a : {&x, &y, &z, &vx, &vy, &vz, &ax, &ay, &az, &rho, &drho, &p}) a->resize(n, 0.0);
-  neighbours.resize(n, 0);
-  id.resize(n, 0);
-  wall.resize(n, 0);
+#define HPCPLAN_SPH_RESIZE(type, name) name.resize(n, type{});
+  HPCPLAN_SPH_PARTICLE_FIELDS(HPCPLAN_SPH_RESIZE)
+#undef HPCPLAN_SPH_RESIZE
 }
 
 void Particles::add(const Vec3& position, const Vec3& velocity, double rho0, bool is_wall) {
@@ -34,14 +36,19 @@ void Particles::add(const Vec3& position, const Vec3& velocity, double rho0, boo
   wall[i] = is_wall ? 1 : 0;
 }
 
+ParticleView Particles::view() {
+  ParticleView v;
+#define HPCPLAN_SPH_POINTER(type, name) v.name = name.data();
+  HPCPLAN_SPH_PARTICLE_FIELDS(HPCPLAN_SPH_POINTER)
+#undef HPCPLAN_SPH_POINTER
+  return v;
+}
+
 void Particles::permute(std::span<const std::uint32_t> order) {
-  std::vector<double> d;
-  for (auto* a : {&x, &y, &z, &vx, &vy, &vz, &ax, &ay, &az, &rho, &drho, &p}) gather(*a, order, d);
-  std::vector<std::uint32_t> u;
-  gather(neighbours, order, u);
-  gather(id, order, u);
-  std::vector<std::uint8_t> b;
-  gather(wall, order, b);
+  std::tuple<std::vector<double>, std::vector<std::uint32_t>, std::vector<std::uint8_t>> scratch;
+#define HPCPLAN_SPH_GATHER(type, name) gather(name, order, std::get<std::vector<type>>(scratch));
+  HPCPLAN_SPH_PARTICLE_FIELDS(HPCPLAN_SPH_GATHER)
+#undef HPCPLAN_SPH_GATHER
 }
 
 }  // namespace hpcplan::sph

@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "hpcplan/sph/fluid_state.hpp"
+#include "hpcplan/sph/physics/push_out.hpp"
 #include "hpcplan/sph/step_backend.hpp"
 
 namespace hpcplan::sph {
@@ -55,5 +56,9 @@ class Fluid {
 // The first thing wrong with the state, or empty: a non-finite number, a fluid particle
 // outside the domain or in an obstacle box's interior.
 std::string first_problem(const FluidState& state);
+
+// A particle's problem in words ("particle 7 left the domain"; "" for none), for every
+// backend's frame check.
+std::string describe(ParticleProblem kind, std::uint32_t id);
 
 }  // namespace hpcplan::sph

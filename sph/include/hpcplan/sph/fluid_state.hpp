@@ -10,47 +10,11 @@
 #include <vector>
 
 #include "hpcplan/sph/neighbour_grid.hpp"
+#include "hpcplan/sph/physics/params.hpp"
 #include "hpcplan/sph/particles.hpp"
 #include "hpcplan/sph/vec3.hpp"
 
 namespace hpcplan::sph {
-
-enum class Preset {
-  seed,   // seed 000: Müller kernels and the paper's parameters (a pressureless particle gas)
-  water,  // weakly-compressible water: Wendland C2, Tait EOS, wall particles, validated
-};
-
-struct FluidParams {
-  Preset preset = Preset::seed;
-  double particle_mass = 0.05;
-  double rest_density = 1000.0;
-  double support = 0.15;           // kernel support radius (seed: H; water: 2h)
-  double smoothing_length = 0.15;  // water: h (the seed's kernels use only the support)
-  Vec3 gravity{0.0, 0.0, -9.81};
-  // seed: p = gas_constant * max(0, rho - rest_density); viscosity mu of Müller's force.
-  double gas_constant = 2000.0;
-  double viscosity = 0.1;
-  // water: Tait EOS p = B ((rho / rho0)^7 - 1), B = rho0 c0^2 / 7; Monaghan's viscosity alpha.
-  double sound_speed = 0.0;
-  double alpha = 0.02;
-  double particle_spacing = 0.0;  // water: dx, the initial lattice spacing
-  double frame_dt = 0.02;         // seconds per frame; substeps never cross a frame's end
-  double cfl = 0.25;              // dt <= cfl * h / (c + |v|max), and <= cfl sqrt(h / |a|max)
-  double restitution = 0.5;       // normal velocity kept (reversed) at walls and box faces
-  int reorder_every = 4;          // substeps between reorderings of the particles by cell
-  // seed: every this many frames (0: never), each fluid particle is given a fresh random
-  // velocity, +-kick_horizontal on x and y and 0..kick_up on z, drawn from the run's seed, the
-  // frame and the particle's id (so the thread count and the particle order do not matter).
-  int agitate_every = 0;
-  double kick_horizontal = 2.5, kick_up = 3.0;
-};
-
-// An obstacle box moving at a fixed velocity, reflected off the domain's walls (a static box
-// has zero velocity).
-struct MovingBox {
-  Box3 box;
-  Vec3 velocity{};
-};
 
 struct FluidState {
   FluidParams params;

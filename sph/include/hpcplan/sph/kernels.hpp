@@ -10,20 +10,25 @@
 // Müller et al. 2003 (the seed preset): poly6 for density, spiky for the pressure gradient,
 // the viscosity kernel's Laplacian for viscosity; all with support radius H.
 // Wendland C2 (the water preset): smoothing length h, support radius 2h.
-#include <numbers>
+//
+// C++17 and HPCPLAN_HD: both backends evaluate these very functions (see physics.hpp).
+#include "hpcplan/core/portable.hpp"
 
 namespace hpcplan::sph {
 
+// pi to double precision (std::numbers is C++20; nvcc compiles this header as C++17).
+inline constexpr double kPi = 3.14159265358979323846;
+
 struct Poly6Kernel {
   double support = 0, support2 = 0, norm = 0;
-  explicit Poly6Kernel(double h = 1.0)
-      : support(h), support2(h * h), norm(315.0 / (64.0 * std::numbers::pi * pow9(h))) {}
-  double w(double r2) const {
+  HPCPLAN_HD explicit Poly6Kernel(double h = 1.0)
+      : support(h), support2(h * h), norm(315.0 / (64.0 * kPi * pow9(h))) {}
+  HPCPLAN_HD double w(double r2) const {
     if (r2 >= support2) return 0.0;
     const double d = support2 - r2;
     return norm * d * d * d;
   }
-  static double pow9(double h) {
+  HPCPLAN_HD static double pow9(double h) {
     const double h3 = h * h * h;
     return h3 * h3 * h3;
   }
@@ -31,14 +36,14 @@ struct Poly6Kernel {
 
 struct SpikyKernel {
   double support = 0, norm = 0;
-  explicit SpikyKernel(double h = 1.0)
-      : support(h), norm(15.0 / (std::numbers::pi * h * h * h * h * h * h)) {}
-  double w(double r) const {
+  HPCPLAN_HD explicit SpikyKernel(double h = 1.0)
+      : support(h), norm(15.0 / (kPi * h * h * h * h * h * h)) {}
+  HPCPLAN_HD double w(double r) const {
     if (r >= support) return 0.0;
     const double d = support - r;
     return norm * d * d * d;
   }
-  double dwdr(double r) const {
+  HPCPLAN_HD double dwdr(double r) const {
     if (r >= support) return 0.0;
     const double d = support - r;
     return -3.0 * norm * d * d;
@@ -49,35 +54,35 @@ struct SpikyKernel {
 // whose Laplacian 45/(pi h^6) (h - r) is positive everywhere inside the support.
 struct ViscosityKernel {
   double support = 0, lap_norm = 0, w_norm = 0;
-  explicit ViscosityKernel(double h = 1.0)
+  HPCPLAN_HD explicit ViscosityKernel(double h = 1.0)
       : support(h),
-        lap_norm(45.0 / (std::numbers::pi * h * h * h * h * h * h)),
-        w_norm(15.0 / (2.0 * std::numbers::pi * h * h * h)) {}
-  double w(double r) const {
+        lap_norm(45.0 / (kPi * h * h * h * h * h * h)),
+        w_norm(15.0 / (2.0 * kPi * h * h * h)) {}
+  HPCPLAN_HD double w(double r) const {
     if (r >= support || r <= 0.0) return 0.0;
     const double q = r / support;
     return w_norm * (-0.5 * q * q * q + q * q + 0.5 / q - 1.0);
   }
-  double laplacian(double r) const { return r >= support ? 0.0 : lap_norm * (support - r); }
+  HPCPLAN_HD double laplacian(double r) const { return r >= support ? 0.0 : lap_norm * (support - r); }
 };
 
 // Wendland C2 in 3D: W = 21/(16 pi h^3) (1 - q/2)^4 (2q + 1), q = r/h in [0, 2].
 struct WendlandC2Kernel {
   double h = 0, support = 0, support2 = 0, norm = 0, inv_h = 0;
-  explicit WendlandC2Kernel(double smoothing_length = 1.0)
+  HPCPLAN_HD explicit WendlandC2Kernel(double smoothing_length = 1.0)
       : h(smoothing_length),
         support(2.0 * smoothing_length),
         support2(4.0 * smoothing_length * smoothing_length),
-        norm(21.0 / (16.0 * std::numbers::pi * h * h * h)),
+        norm(21.0 / (16.0 * kPi * h * h * h)),
         inv_h(1.0 / smoothing_length) {}
-  double w(double r) const {
+  HPCPLAN_HD double w(double r) const {
     const double q = r * inv_h;
     if (q >= 2.0) return 0.0;
     const double a = 1.0 - 0.5 * q;
     const double a2 = a * a;
     return norm * a2 * a2 * (2.0 * q + 1.0);
   }
-  double dwdr(double r) const {
+  HPCPLAN_HD double dwdr(double r) const {
     const double q = r * inv_h;
     if (q >= 2.0) return 0.0;
     const double a = 1.0 - 0.5 * q;

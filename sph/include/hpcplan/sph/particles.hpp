@@ -1,6 +1,7 @@
 #pragma once
 // The fluid's particles as a structure of arrays: one array per quantity, so that a phase
-// streams through only the arrays it reads, and a particle's entries share one index.
+// streams through only the arrays it reads, and a particle's entries share one index. The
+// arrays are the fields of particle_fields.hpp, declared from that one list.
 // Boundary particles (the water preset's walls) live in the same arrays, flagged `wall`, so
 // that one neighbour grid serves fluid-fluid and fluid-wall pairs.
 //
@@ -10,20 +11,15 @@
 #include <span>
 #include <vector>
 
+#include "hpcplan/sph/particle_fields.hpp"
 #include "hpcplan/sph/vec3.hpp"
 
 namespace hpcplan::sph {
 
 struct Particles {
-  std::vector<double> x, y, z;            // position
-  std::vector<double> vx, vy, vz;         // velocity
-  std::vector<double> ax, ay, az;         // acceleration of the current substep
-  std::vector<double> rho;                // density
-  std::vector<double> drho;               // density rate (continuity equation; water preset)
-  std::vector<double> p;                  // pressure
-  std::vector<std::uint32_t> neighbours;  // neighbours within the support (self excluded)
-  std::vector<std::uint32_t> id;          // the particle's index at creation; stable
-  std::vector<std::uint8_t> wall;         // 1: fixed boundary particle, 0: fluid
+#define HPCPLAN_SPH_VECTOR_MEMBER(type, name) std::vector<type> name;
+  HPCPLAN_SPH_PARTICLE_FIELDS(HPCPLAN_SPH_VECTOR_MEMBER)
+#undef HPCPLAN_SPH_VECTOR_MEMBER
 
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n);
@@ -33,13 +29,15 @@ struct Particles {
   Vec3 position(std::size_t i) const { return {x[i], y[i], z[i]}; }
   Vec3 velocity(std::size_t i) const { return {vx[i], vy[i], vz[i]}; }
 
+  // Every array as a pointer (valid until the next resize or permute).
+  ParticleView view();
+
   // Reorders every array at once: entry k of each array becomes old entry order[k]. `order`
   // must be a permutation of 0 .. size()-1.
   void permute(std::span<const std::uint32_t> order);
 
   // Bytes held per particle, for memory budgets.
-  static constexpr std::size_t kBytesPerParticle =
-      12 * sizeof(double) + 2 * sizeof(std::uint32_t) + 1;
+  static constexpr std::size_t kBytesPerParticle = kParticleFieldBytes;
 };
 
 }  // namespace hpcplan::sph
