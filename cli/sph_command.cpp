@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/io/sph_report.hpp"
 #include "hpcplan/io/vtk_fluid.hpp"
+#include "hpcplan/sph/checkpoint.hpp"
 #include "hpcplan/sph/diagnostics.hpp"
 #include "hpcplan/sph/presets.hpp"
 #include "hpcplan/sph/run.hpp"
@@ -36,7 +38,18 @@ struct SphArgs {
   std::uint64_t every = 10;
   double memory_mb = 0.0;
   bool json = false;
+  std::string checkpoint, restart;
+  std::uint64_t checkpoint_every = 100;
+  // --preset, --scenario, --particles, --seed: a restart refuses a value given here that
+  // differs from its checkpoint's.
+  std::vector<const CLI::Option*> problem_options;
 };
+
+std::string problem_words(const sph::FluidOptions& o) {
+  return "--preset " + std::string(sph::to_string(o.preset)) + " --scenario " +
+         std::string(sph::to_string(o.scenario)) + " --particles " + std::to_string(o.particles) +
+         " --seed " + std::to_string(o.seed);
+}
 
 int run(const SphArgs& a) {
   sph::FluidOptions o;
@@ -47,6 +60,23 @@ int run(const SphArgs& a) {
   o.particles = a.particles;
   o.seed = a.seed;
   sph::validate(o);
+  // A restart continues the checkpoint's problem; options that name another are refused.
+  std::optional<sph::FluidCheckpoint> restart;
+  if (!a.restart.empty()) {
+    restart = sph::read_checkpoint(a.restart);
+    const sph::FluidOptions& saved = restart->options;
+    auto given = [&](int k) { return a.problem_options[k]->count() > 0; };
+    if ((given(0) && o.preset != saved.preset) || (given(1) && o.scenario != saved.scenario) ||
+        (given(2) && o.particles != saved.particles) || (given(3) && o.seed != saved.seed))
+      throw InputError("--restart '" + a.restart + "' continues " +
+                       problem_words(restart->options) + ", not " + problem_words(o));
+    o = restart->options;
+    if (a.frames < restart->frame)
+      throw InputError("--restart '" + a.restart + "' is at frame " +
+                       std::to_string(restart->frame) + ", past --frames " +
+                       std::to_string(a.frames));
+  }
+  if (!a.checkpoint.empty()) require_writable_destination(a.checkpoint, "--checkpoint");
   sph::check_backend_name(a.backend);
   // The memory budget: an explicit one, else half of what the machine has available.
   const std::uint64_t need = sph::estimated_bytes(o);
@@ -67,30 +97,34 @@ int run(const SphArgs& a) {
   if (!a.vtk_dir.empty()) prepare_vtk_dir(a.vtk_dir);
   if (a.threads > 0) omp_set_num_threads(a.threads);
 
-  sph::FluidState initial = sph::make_fluid(o);
+  sph::FluidState initial = restart ? std::move(restart->state) : sph::make_fluid(o);
   io::SphRun info;
   info.options = o;
   info.threads = a.threads > 0 ? a.threads : omp_get_max_threads();
   info.domain = initial.domain;
   info.params = initial.params;
   info.wall_particles = initial.particles.size() - initial.fluid_count;
-  sph::Fluid fluid(std::move(initial), a.backend);
+  sph::Fluid fluid(std::move(initial), a.backend, restart ? restart->frame : 0);
   info.backend = fluid.backend().name();
 
   std::unique_ptr<io::VtkSeries> vtk;
   if (!a.vtk_dir.empty()) {
     vtk = std::make_unique<io::VtkSeries>(a.vtk_dir);
-    vtk->write(0, fluid.full_state());
+    if (restart)
+      vtk->resume(restart->frame, fluid.state().params.frame_dt);  // the frames written before
+    else
+      vtk->write(0, fluid.full_state());
   }
   // The surge front, every substep.
   std::vector<std::pair<double, double>> front;
+  if (restart) front = std::move(restart->front);
   std::function<void(const sph::FluidState&)> watch_front;
   if (o.scenario == sph::Scenario::dambreak) {
     watch_front = [&front](const sph::FluidState& s) {
       const sph::SurgeFront f = sph::dam_break_front(s);
       front.emplace_back(f.t, f.z);
     };
-    watch_front(fluid.state());
+    if (!restart) watch_front(fluid.state());
   }
   const Stopwatch clock;
   info.report = sph::run_frames(
@@ -98,8 +132,18 @@ int run(const SphArgs& a) {
       [&](std::uint64_t frame, const sph::FluidState&) {
         if (vtk && (frame % a.every == 0 || frame == a.frames))
           vtk->write(frame, fluid.full_state());
+        // A checkpoint every K frames and at the end, of a sound state only (a frame that ended
+        // unsound stops the run: the last checkpoint stays the last sound one).
+        if (!a.checkpoint.empty() && (frame % a.checkpoint_every == 0 || frame == a.frames) &&
+            sph::first_problem(fluid.full_state()).empty())
+          write_file_atomically(a.checkpoint,
+                                sph::encode_checkpoint(o, frame, fluid.full_state(), front));
       },
       watch_front);
+  if (restart && !a.checkpoint.empty() && restart->frame == a.frames)
+    write_file_atomically(a.checkpoint,
+                          sph::encode_checkpoint(o, a.frames, fluid.full_state(), front));
+  if (restart) info.restarted_at_frame = restart->frame;
   info.seconds = clock.seconds();
   info.summary = sph::summarise(fluid.full_state());
 
@@ -140,6 +184,16 @@ Action register_sph_command(CLI::App& app) {
   add_number(cmd, "--memory-mb", a.memory_mb,
              "Refuse runs needing more memory (default: half the available)", 1, 1e9);
   cmd->add_flag("--json", a.json, "Print the result as one JSON object");
+  cmd->add_option("--checkpoint", a.checkpoint,
+                  "Write the whole state to this file (atomically) every --checkpoint-every "
+                  "frames and at the end");
+  add_number(cmd, "--checkpoint-every", a.checkpoint_every, "With --checkpoint: every K frames",
+             1, 100'000'000)
+      ->capture_default_str();
+  cmd->add_option("--restart", a.restart,
+                  "Continue the run saved in this checkpoint, bit for bit, up to --frames");
+  for (const char* name : {"--preset", "--scenario", "--particles", "--seed"})
+    a.problem_options.push_back(cmd->get_option(name));
   cmd->add_option("--output", a.output, "Also write the JSON result to this file (atomically)");
   return [args](const Context& context) {
     if (context.comm && context.comm->size() > 1)

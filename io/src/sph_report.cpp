@@ -36,6 +36,7 @@ nlohmann::json to_json(const SphRun& r) {
       {"wall_particles", r.wall_particles},
       {"frames", rep.frames},
       {"substeps", rep.substeps},
+      {"restarted_at_frame", r.restarted_at_frame},
       {"box", {r.domain.lo, r.domain.hi}},
       {"ms_per_frame_median", median(rep.frame_ms)},
       {"ms_per_frame_max", max_ms},

@@ -1,7 +1,9 @@
 #include "hpcplan/io/vtk_fluid.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <string_view>
 
 #include "hpcplan/core/atomic_file.hpp"
@@ -152,13 +154,43 @@ std::string vtu_robot(const std::array<double, 3>& robot, const std::array<doubl
   return grid_document(data, cell_data, points, connectivity, offsets, types);
 }
 
+namespace {
+
+std::string tag_of(std::uint64_t frame) {
+  char tag[32];
+  std::snprintf(tag, sizeof tag, "%06llu", static_cast<unsigned long long>(frame));
+  return tag;
+}
+
+}  // namespace
+
 VtkSeries::VtkSeries(std::string dir) : dir_(std::move(dir)) {
   if (!dir_.empty() && dir_.back() != '/') dir_ += '/';
 }
 
+void VtkSeries::resume(std::uint64_t frame, double frame_dt) {
+  namespace fs = std::filesystem;
+  std::vector<std::uint64_t> frames;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir_, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.size() != 16 || name.rfind("fluid_", 0) != 0 || name.substr(12) != ".vtu") continue;
+    const std::string digits = name.substr(6, 6);
+    if (digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::uint64_t f = std::stoull(digits);
+    if (f <= frame) frames.push_back(f);
+  }
+  std::sort(frames.begin(), frames.end());
+  entries_.clear();
+  for (const std::uint64_t f : frames) {
+    const std::string tag = tag_of(f);
+    entries_.push_back({static_cast<double>(f) * frame_dt, tag,
+                        fs::exists(dir_ + "robot_" + tag + ".vtu", ec)});
+  }
+}
+
 void VtkSeries::write(std::uint64_t frame, const sph::FluidState& state, const std::string& robot) {
-  char tag[32];
-  std::snprintf(tag, sizeof tag, "%06llu", static_cast<unsigned long long>(frame));
+  const std::string tag = tag_of(frame);
   write_file_atomically(dir_ + "fluid_" + tag + ".vtu", vtu_particles(state));
   write_file_atomically(dir_ + "boxes_" + tag + ".vtu", vtu_boxes(state.boxes));
   if (!robot.empty()) write_file_atomically(dir_ + "robot_" + tag + ".vtu", robot);

@@ -67,13 +67,8 @@ class CpuBackend final : public StepBackend {
     const StepView view{p.view(), dt, s.domain, s.boxes.data(), static_cast<int>(s.boxes.size())};
     const Index n = static_cast<Index>(p.size());
     with_solver(s.params.preset, [&](auto solver) {
-      decltype(solver)::force_phases(s.params, [&](const auto& phase) {
-#pragma omp parallel for schedule(dynamic, 256)
-        for (Index i = 0; i < n; ++i) {
-          const auto k = static_cast<std::size_t>(i);
-          phase(view, k, [&](auto&& fn) { lists_.for_each(k, s.grid, p, fn); });
-        }
-      });
+      decltype(solver)::force_phases(s.params,
+                                     [&](const auto& phase) { run_phase(phase, view, s); });
     });
     const Integrate integrate(s.params);
 #pragma omp parallel for schedule(static)
@@ -84,6 +79,21 @@ class CpuBackend final : public StepBackend {
   }
 
  private:
+  // One force phase over every particle, its neighbours read from the lists. (A member
+  // function, not a lambda nested in the solver's: clang rejects a capture of the substep's
+  // locals from a generic lambda two levels down inside an OpenMP region.)
+  template <class Phase>
+  void run_phase(const Phase& phase, const StepView& view, const FluidState& s) const {
+    const Particles& p = s.particles;
+    const NeighbourGrid& grid = s.grid;
+    const Index n = static_cast<Index>(p.size());
+#pragma omp parallel for schedule(dynamic, 256)
+    for (Index i = 0; i < n; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      phase(view, k, [&](auto&& fn) { lists_.for_each(k, grid, p, fn); });
+    }
+  }
+
   NeighbourLists lists_;
 };
 

@@ -8,11 +8,11 @@
 
 namespace hpcplan::sph {
 
-Fluid::Fluid(FluidState initial, std::unique_ptr<StepBackend> backend)
-    : state_(std::move(initial)), backend_(std::move(backend)) {}
+Fluid::Fluid(FluidState initial, std::unique_ptr<StepBackend> backend, std::uint64_t frames_done)
+    : state_(std::move(initial)), backend_(std::move(backend)), frame_(frames_done) {}
 
-Fluid::Fluid(FluidState initial, std::string_view backend)
-    : state_(std::move(initial)), backend_(make_backend(backend, state_)) {}
+Fluid::Fluid(FluidState initial, std::string_view backend, std::uint64_t frames_done)
+    : state_(std::move(initial)), backend_(make_backend(backend, state_)), frame_(frames_done) {}
 
 // The agitation of frame `frame`: a fresh velocity for every fluid particle, from a generator
 // seeded by (run seed, frame, particle id).

@@ -99,6 +99,31 @@ assert rows[-1][1] > 1.05, rows[-1]
 PY
 echo "sph_cli: front ok"
 
+# Checkpoint and restart: a run stopped at frame 20 and restarted to 40 writes the very files
+# the uninterrupted run writes (every VTK frame and the series, byte for byte); the water dam
+# break's front CSV likewise, across a restart in the middle of the surge.
+"$bin" sph --preset seed --scenario dynamic --particles 800 --frames 40 --seed 3 \
+  --vtk "$dir/ck_full" --every 10 > /dev/null || fail "checkpoint: the uninterrupted run failed"
+"$bin" sph --preset seed --scenario dynamic --particles 800 --frames 20 --seed 3 \
+  --vtk "$dir/ck_part" --every 10 --checkpoint "$dir/ck.bin" --checkpoint-every 10 > /dev/null ||
+  fail "checkpoint: the first half failed"
+"$bin" sph --restart "$dir/ck.bin" --frames 40 --vtk "$dir/ck_part" --every 10 --json \
+  > "$dir/ck.json" || fail "checkpoint: the restart failed"
+for f in "$dir"/ck_full/*; do
+  cmp -s "$f" "$dir/ck_part/$(basename "$f")" || fail "checkpoint: $(basename "$f") differs after a restart"
+done
+[[ $(ls "$dir/ck_full" | wc -l) -eq $(ls "$dir/ck_part" | wc -l) ]] || fail "checkpoint: other files"
+grep -q '"restarted_at_frame":20' "$dir/ck.json" || fail "checkpoint: the restart frame is not reported"
+"$bin" sph --preset water --scenario dambreak --particles 500 --frames 4 \
+  --front-csv "$dir/front_full.csv" > /dev/null || fail "checkpoint: water run failed"
+"$bin" sph --preset water --scenario dambreak --particles 500 --frames 2 \
+  --checkpoint "$dir/water.bin" > /dev/null || fail "checkpoint: water first half failed"
+"$bin" sph --preset water --restart "$dir/water.bin" --frames 4 \
+  --front-csv "$dir/front_part.csv" --checkpoint "$dir/water.bin" > /dev/null ||
+  fail "checkpoint: water restart failed"
+cmp -s "$dir/front_full.csv" "$dir/front_part.csv" || fail "checkpoint: the front differs after a restart"
+echo "sph_cli: checkpoint ok"
+
 # Bad input: exit 2, one line on stderr, nothing written.
 bad() {
   local what=$1; shift
@@ -121,6 +146,23 @@ bad "unwritable vtk" --vtk /nonexistent-dir/vtk
 bad "unwritable front" --preset water --front-csv /nonexistent-dir/f.csv
 bad "negative threads" --threads -1
 bad "unknown backend" --backend gpu
+# Damaged and foreign checkpoints, and a restart that names another problem.
+head -c 500 "$dir/ck.bin" > "$dir/cut.bin"
+cp "$dir/ck.bin" "$dir/flip.bin"
+printf '\x7f' | dd of="$dir/flip.bin" bs=1 seek=20000 conv=notrunc 2> /dev/null
+echo "not a checkpoint" > "$dir/foreign.bin"
+bad "cut checkpoint" --restart "$dir/cut.bin"
+grep -q "cut short" "$dir/err.txt" || fail "cut checkpoint: $(cat "$dir/err.txt")"
+bad "damaged checkpoint" --restart "$dir/flip.bin"
+grep -q "checksum" "$dir/err.txt" || fail "damaged checkpoint: $(cat "$dir/err.txt")"
+bad "foreign checkpoint" --restart "$dir/foreign.bin"
+grep -q "not an hpcplan fluid checkpoint" "$dir/err.txt" || fail "foreign: $(cat "$dir/err.txt")"
+bad "missing checkpoint" --restart "$dir/none.bin"
+bad "checkpoint of another problem" --restart "$dir/ck.bin" --particles 900
+grep -q "continues --preset seed --scenario dynamic --particles 800" "$dir/err.txt" ||
+  fail "another problem: $(cat "$dir/err.txt")"
+bad "restart past --frames" --restart "$dir/ck.bin" --frames 10
+bad "unwritable checkpoint" --checkpoint /nonexistent-dir/c.bin
 # --backend cuda: refused with its reason where no GPU can run it (this build may or may not have
 # the backend); where one can, it runs and reports its backend.
 if "$bin" sph --backend cuda --particles 500 --frames 2 --json > "$dir/cuda.json" 2> "$dir/err.txt"; then

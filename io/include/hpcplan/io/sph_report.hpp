@@ -24,6 +24,9 @@ struct SphRun {
   sph::RunReport report;
   sph::FluidSummary summary;  // after the last frame
   double seconds = 0.0;       // the whole run, set-up excluded
+  // A restarted run: the checkpoint's frame (0: from the start). The report's substeps and
+  // frame times are this process's frames, after it.
+  std::uint64_t restarted_at_frame = 0;
 };
 
 nlohmann::json to_json(const SphRun& run);

@@ -33,6 +33,11 @@ class VtkSeries {
   // rewrites the .pvd.
   void write(std::uint64_t frame, const sph::FluidState& state, const std::string& robot = {});
   std::size_t frames_written() const { return entries_.size(); }
+  // A restarted run's series: the frames up to `frame` already in the directory (files
+  // fluid_NNNNNN.vtu, with robot_NNNNNN.vtu where written), at time NNNNNN x frame_dt (a
+  // frame ends at that exact multiple), so that the .pvd lists them as the uninterrupted run
+  // would.
+  void resume(std::uint64_t frame, double frame_dt);
 
  private:
   std::string dir_;

@@ -30,9 +30,11 @@ struct FrameReport {
 
 class Fluid {
  public:
-  Fluid(FluidState initial, std::unique_ptr<StepBackend> backend);
+  // `frames_done`: frames already run on `initial` (a restart from a checkpoint), so that the
+  // next frame's number, end time and agitation are the uninterrupted run's.
+  Fluid(FluidState initial, std::unique_ptr<StepBackend> backend, std::uint64_t frames_done = 0);
   // The backend by name ("cpu" or "cuda", see make_backend), made for this fluid.
-  Fluid(FluidState initial, std::string_view backend);
+  Fluid(FluidState initial, std::string_view backend, std::uint64_t frames_done = 0);
 
   // Advances by one frame (params.frame_dt). `after_substep`, if given, sees the state after
   // every substep (the dam break's surge front is read this way).
@@ -44,6 +46,7 @@ class Fluid {
   // The state with every array current (a GPU backend copies them back: reports, VTK, tests).
   const FluidState& full_state() const;
   const StepBackend& backend() const { return *backend_; }
+  std::uint64_t frames_done() const { return frame_; }
 
  private:
   // mutable: a backend that keeps the particles elsewhere completes its copies into it when a

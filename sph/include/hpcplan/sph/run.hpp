@@ -15,11 +15,13 @@ struct RunReport {
   bool stable = true;
   std::uint64_t unstable_frame = 0;  // the first unsound frame (1-based), when !stable
   std::string problem;
-  std::uint64_t frames = 0;  // frames completed
+  std::uint64_t frames = 0;  // frames completed (counted from the start of the run)
   std::uint64_t substeps = 0;
   std::vector<double> frame_ms, grid_ms;
 };
 
+// Runs the fluid from frame fluid.frames_done() + 1 up to frame `frames` (a restarted fluid
+// carries on where its checkpoint stopped); after_frame sees each frame's number.
 RunReport run_frames(Fluid& fluid, std::uint64_t frames,
                      const std::function<void(std::uint64_t frame, const FluidState&)>& after_frame,
                      const std::function<void(const FluidState&)>& after_substep = {});

@@ -1,0 +1,54 @@
+#pragma once
+// A fluid run's checkpoint: everything the next frames depend on, so that a run restarted from
+// it continues bit for bit as the uninterrupted run would (tests/sph: Checkpoint.*).
+//
+// What is saved, and why it suffices:
+//   - the problem (preset, scenario, particles asked for, seed): the parameters, domain,
+//     neighbour grid and wall particles are rebuilt from it by make_fluid, exactly as at the
+//     start, and the saved particle counts must match what it builds;
+//   - the frames completed, the simulated time and the substep count (the reordering by cell
+//     runs every few substeps, counted from the start; the agitation depends on the frame);
+//   - every particle field of particle_fields.hpp in the current particle order (the order of
+//     the sums, so the order of round-off), and every box's position and velocity;
+//   - the dam break's front rows so far (so that --front-csv covers the whole run).
+// Nothing else carries over a frame boundary: the CPU backend rebuilds its grid and lists every
+// substep, the CUDA backend sorts by cell every substep.
+//
+// The file: a magic line, the format and the hpcplan version that wrote it, the payload
+// (little-endian, as the machines hpcplan runs on), and a 64-bit checksum of the payload. A
+// file that is not a checkpoint, is cut short, fails its checksum, comes from another version
+// or describes another problem is an InputError naming the file and what is wrong.
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "hpcplan/sph/fluid_state.hpp"
+#include "hpcplan/sph/presets.hpp"
+
+namespace hpcplan::sph {
+
+struct FluidCheckpoint {
+  FluidOptions options;
+  std::uint64_t frame = 0;  // frames completed
+  FluidState state;         // as make_fluid(options) builds it, then the saved dynamics
+  std::vector<std::pair<double, double>> front;  // the dam break's (T, Z) rows so far
+};
+
+// The checkpoint's bytes; `state` must have every array current (Fluid::full_state()).
+std::string encode_checkpoint(const FluidOptions& options, std::uint64_t frame,
+                              const FluidState& state,
+                              const std::vector<std::pair<double, double>>& front);
+
+// The checkpoint in `bytes`, read from `name` (for messages). InputError when damaged,
+// foreign, of another version or of a problem make_fluid does not rebuild to the same counts.
+FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& name);
+
+// Reads and decodes a file: InputError if it cannot be read, as decode_checkpoint otherwise.
+FluidCheckpoint read_checkpoint(const std::string& path);
+
+// The version written into checkpoints (a checkpoint of another is refused).
+std::string_view checkpoint_version();
+
+}  // namespace hpcplan::sph
