@@ -128,7 +128,7 @@ int run(const SphArgs& a) {
   }
   const Stopwatch clock;
   info.report = sph::run_frames(
-      fluid, a.frames,
+      fluid, a.frames - fluid.frames_done(),
       [&](std::uint64_t frame, const sph::FluidState&) {
         if (vtk && (frame % a.every == 0 || frame == a.frames))
           vtk->write(frame, fluid.full_state());
@@ -187,8 +187,8 @@ Action register_sph_command(CLI::App& app) {
   cmd->add_option("--checkpoint", a.checkpoint,
                   "Write the whole state to this file (atomically) every --checkpoint-every "
                   "frames and at the end");
-  add_number(cmd, "--checkpoint-every", a.checkpoint_every, "With --checkpoint: every K frames",
-             1, 100'000'000)
+  add_number(cmd, "--checkpoint-every", a.checkpoint_every, "With --checkpoint: every K frames", 1,
+             100'000'000)
       ->capture_default_str();
   cmd->add_option("--restart", a.restart,
                   "Continue the run saved in this checkpoint, bit for bit, up to --frames");

@@ -184,8 +184,8 @@ void VtkSeries::resume(std::uint64_t frame, double frame_dt) {
   entries_.clear();
   for (const std::uint64_t f : frames) {
     const std::string tag = tag_of(f);
-    entries_.push_back({static_cast<double>(f) * frame_dt, tag,
-                        fs::exists(dir_ + "robot_" + tag + ".vtu", ec)});
+    entries_.push_back(
+        {static_cast<double>(f) * frame_dt, tag, fs::exists(dir_ + "robot_" + tag + ".vtu", ec)});
   }
 }
 

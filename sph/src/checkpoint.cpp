@@ -60,8 +60,9 @@ class Reader {
   template <class T>
   void get_array(std::vector<T>& a, std::uint64_t expected) {
     const auto n = get<std::uint64_t>();
-    if (n != expected) fail("holds " + std::to_string(n) + " entries where " +
-                            std::to_string(expected) + " were expected");
+    if (n != expected)
+      fail("holds " + std::to_string(n) + " entries where " + std::to_string(expected) +
+           " were expected");
     a.resize(n);
     if (n > 0) std::memcpy(a.data(), take(n * sizeof(T)), n * sizeof(T));
   }

@@ -43,7 +43,8 @@ class CudaBackend final : public StepBackend {
   std::string end_frame(FluidState& s) override {
     device_.start_position_copy();
     copied_ = true;
-    const cuda::Problem p = device_.check(s.domain, s.boxes.data(), static_cast<int>(s.boxes.size()));
+    const cuda::Problem p =
+        device_.check(s.domain, s.boxes.data(), static_cast<int>(s.boxes.size()));
     return describe(p.kind, p.id);
   }
 
@@ -55,9 +56,7 @@ class CudaBackend final : public StepBackend {
     device_.finish_position_copy(s.particles.view());
   }
 
-  void download(FluidState& s) override {
-    device_.download(s.particles.view());
-  }
+  void download(FluidState& s) override { device_.download(s.particles.view()); }
 
  private:
   cuda::DeviceFluid device_;

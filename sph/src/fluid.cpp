@@ -82,9 +82,8 @@ namespace {
 std::string problem_of(const FluidState& s, std::size_t i) {
   const Particles& p = s.particles;
   const double x[3] = {p.x[i], p.y[i], p.z[i]}, v[3] = {p.vx[i], p.vy[i], p.vz[i]};
-  const ParticleProblem kind =
-      particle_problem(s.domain, s.boxes.data(), static_cast<int>(s.boxes.size()), x, v,
-                       p.rho[i], p.p[i]);
+  const ParticleProblem kind = particle_problem(
+      s.domain, s.boxes.data(), static_cast<int>(s.boxes.size()), x, v, p.rho[i], p.p[i]);
   return describe(kind, p.id[i]);
 }
 
@@ -93,12 +92,18 @@ std::string problem_of(const FluidState& s, std::size_t i) {
 std::string describe(ParticleProblem kind, std::uint32_t id) {
   const std::string who = "particle " + std::to_string(id);
   switch (kind) {
-    case ParticleProblem::none: return "";
-    case ParticleProblem::position: return "non-finite position of " + who;
-    case ParticleProblem::velocity: return "non-finite velocity of " + who;
-    case ParticleProblem::density: return "non-finite density or pressure of " + who;
-    case ParticleProblem::outside: return who + " left the domain";
-    case ParticleProblem::in_box: return who + " is inside an obstacle box";
+    case ParticleProblem::none:
+      return "";
+    case ParticleProblem::position:
+      return "non-finite position of " + who;
+    case ParticleProblem::velocity:
+      return "non-finite velocity of " + who;
+    case ParticleProblem::density:
+      return "non-finite density or pressure of " + who;
+    case ParticleProblem::outside:
+      return who + " left the domain";
+    case ParticleProblem::in_box:
+      return who + " is inside an obstacle box";
   }
   return who + " is unsound";
 }

@@ -33,7 +33,7 @@ void Particles::add(const Vec3& position, const Vec3& velocity, double rho0, boo
   vx[i] = velocity[0], vy[i] = velocity[1], vz[i] = velocity[2];
   rho[i] = rho0;
   id[i] = static_cast<std::uint32_t>(i);
-  wall[i] = is_wall ? 1 : 0;
+  wall[i] = is_wall ? kNoSlipWall : 0;
 }
 
 ParticleView Particles::view() {

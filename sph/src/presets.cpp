@@ -152,6 +152,9 @@ FluidState make_water(const FluidOptions& o) {
   const double height = w.fluid_hi[2] - w.fluid_lo[2];
   f.sound_speed = 10.0 * std::sqrt(2.0 * kG * height);
   f.alpha = 0.1;
+  f.delta = 0.1;  // the literature's value (Molteni and Colagrossi 2009; Antuono et al. 2010)
+  f.no_slip = true;
+  f.kinematic_viscosity = 1.0e-6;  // water at 20 C
   f.cfl = 0.25;
   f.restitution = 0.0;
   s.domain = w.domain;
@@ -181,6 +184,10 @@ FluidState make_water(const FluidOptions& o) {
         if (inside) continue;
         s.particles.add({(i + 0.5) * w.dx, (j + 0.5) * w.dx, (k + 0.5) * w.dx}, {0, 0, 0},
                         f.rest_density, true);
+        // The dam break is a slab a/4 wide standing in for Martin and Moyce's plane flow: its
+        // two side walls are symmetry planes, free-slip (no friction the experiment had not).
+        if (o.scenario == Scenario::dambreak && (j < 0 || j >= cy))
+          s.particles.wall.back() = kFreeSlipWall;
       }
   const double pad = kWallLayers * w.dx;
   const Box3 region{{-pad, -pad, -pad}, {size[0] + pad, size[1] + pad, size[2]}};

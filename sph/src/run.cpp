@@ -6,8 +6,9 @@ RunReport run_frames(Fluid& fluid, std::uint64_t frames,
                      const std::function<void(std::uint64_t, const FluidState&)>& after_frame,
                      const std::function<void(const FluidState&)>& after_substep) {
   RunReport r;
+  const std::uint64_t first = fluid.frames_done() + 1;
   r.frames = fluid.frames_done();
-  for (std::uint64_t f = fluid.frames_done() + 1; f <= frames; ++f) {
+  for (std::uint64_t f = first; f < first + frames; ++f) {
     const FrameReport frame = fluid.advance_frame(after_substep);
     r.substeps += static_cast<std::uint64_t>(frame.substeps);
     r.frame_ms.push_back(frame.ms);

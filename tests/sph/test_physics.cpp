@@ -232,6 +232,7 @@ TEST(SharedPhases, WaterContinuityWallPressureAndIntegrate) {
   c.p.add({0, 0, 0.0}, {0, 0, 0}, 1000.0, true);      // a wall particle 0.1 below
   const double dt = 1e-3;
   c.run(WaterContinuity(f), c.view(dt));
+  c.run(WaterDensityStep(f), c.view(dt));
   // drho = m (v_0 - 0) . (x_0 - x_1) dW/dr / r = 1 * (-1 * 0.1) * dwdr(0.1) / 0.1 > 0.
   const double nw = 21.0 / (16.0 * kPiHand * 1e-3);
   const double dwdr = -5.0 * nw / 0.1 * 0.125;

@@ -340,11 +340,12 @@ TEST(WaterValidation, CoarseDamBreakFollowsMartinAndMoyce) {
   ASSERT_TRUE(r.stable) << r.problem;
   const std::pair<double, double> data[] = {
       {0.832, 1.217}, {1.219, 1.474}, {1.997, 2.292}, {2.547, 2.995}};
+  // The target: within 10% of the experiment at every point with 0.8 <= T <= 3, the front
+  // measured by density (diagnostics.hpp), T as simulated (no time offset).
   for (const auto& [t, z] : data) {
     auto it = std::lower_bound(tz.begin(), tz.end(), std::make_pair(t, 0.0));
     ASSERT_NE(it, tz.end());
-    EXPECT_GT(it->second, z) << "T = " << t << ": the front no longer leads the experiment";
-    EXPECT_LT(it->second, 1.17 * z) << "T = " << t;
+    EXPECT_LT(std::abs(it->second - z), 0.10 * z) << "T = " << t << ": Z = " << it->second;
   }
 }
 

@@ -132,8 +132,7 @@ struct LimitBits {
   unsigned int neighbours, compressed;
 };
 
-__global__ void reduce_limits(ParticleView a, std::size_t n, double rest_density,
-                              LimitBits* out) {
+__global__ void reduce_limits(ParticleView a, std::size_t n, double rest_density, LimitBits* out) {
   const std::size_t i = blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x;
   double v2 = 0.0, a2 = 0.0;
   unsigned int nb = 0, compressed = 0;

@@ -25,7 +25,9 @@ class SplitMix64 {
     return splitmix64_mix(state_);
   }
   // Uniform double in [0, 1) from the top 53 bits.
-  HPCPLAN_HD constexpr double next_unit() noexcept { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+  HPCPLAN_HD constexpr double next_unit() noexcept {
+    return static_cast<double>(next() >> 11) * 0x1.0p-53;
+  }
   // Uniform integer in [0, n); n > 0. Lemire's multiply-shift, bias negligible for n << 2^64.
   std::uint64_t next_below(std::uint64_t n) noexcept {
     return static_cast<std::uint64_t>((static_cast<unsigned __int128>(next()) * n) >> 64);

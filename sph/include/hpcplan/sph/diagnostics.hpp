@@ -21,11 +21,18 @@ struct FluidSummary {
 FluidSummary summarise(const FluidState& state);
 
 // The dam break's surge front in Martin and Moyce's variables: T = t sqrt(2 g / a) and
-// Z = (x_front + dx / 2) / a, the front taken at the fluid's edge, half a spacing beyond the
-// foremost particle (a = kDamBreakColumn, g from the state's gravity).
+// Z = x_front / a (a = kDamBreakColumn, g from the state's gravity). x_front is the farthest x
+// on the sampling line near the floor (mid-width, half a spacing up: the first particle layer)
+// where the fluid's kernel-interpolated density sum_j m W(x - x_j) reaches half the rest
+// density, as DualSPHysics' validations measure it: a detached drop or a film thinner than the
+// kernel does not count as the front. The floor and the two side walls of the slab count as
+// mirrors (each fluid particle's reflections join the sum), so the water's interior reads rho0
+// on the line, not the half or less that a truncated kernel would sum. Samples every dx / 8,
+// the crossing interpolated between two samples. `density_fraction`: the threshold as a
+// fraction of the rest density.
 struct SurgeFront {
   double t = 0.0, z = 0.0;
 };
-SurgeFront dam_break_front(const FluidState& state);
+SurgeFront dam_break_front(const FluidState& state, double density_fraction = 0.5);
 
 }  // namespace hpcplan::sph

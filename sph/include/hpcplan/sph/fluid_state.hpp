@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "hpcplan/sph/neighbour_grid.hpp"
-#include "hpcplan/sph/physics/params.hpp"
 #include "hpcplan/sph/particles.hpp"
+#include "hpcplan/sph/physics/params.hpp"
 #include "hpcplan/sph/vec3.hpp"
 
 namespace hpcplan::sph {

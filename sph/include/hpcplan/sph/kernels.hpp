@@ -63,7 +63,9 @@ struct ViscosityKernel {
     const double q = r / support;
     return w_norm * (-0.5 * q * q * q + q * q + 0.5 / q - 1.0);
   }
-  HPCPLAN_HD double laplacian(double r) const { return r >= support ? 0.0 : lap_norm * (support - r); }
+  HPCPLAN_HD double laplacian(double r) const {
+    return r >= support ? 0.0 : lap_norm * (support - r);
+  }
 };
 
 // Wendland C2 in 3D: W = 21/(16 pi h^3) (1 - q/2)^4 (2q + 1), q = r/h in [0, 2].

@@ -19,10 +19,14 @@
   X(double, p)                                   /* pressure */                              \
   X(std::uint32_t, neighbours)                   /* within the support, itself excluded */   \
   X(std::uint32_t, id)                           /* index at creation; stable */             \
-  X(std::uint8_t, wall)                          /* 1: fixed boundary particle, 0: fluid */
+  X(std::uint8_t, wall)                          /* 0 fluid, else a wall (kNoSlipWall...) */
 // clang-format on
 
 namespace hpcplan::sph {
+
+// The wall field's values: 0 is fluid; a wall particle is fixed and either obeys the preset's
+// wall condition (no-slip for water) or is a free-slip symmetry plane.
+inline constexpr std::uint8_t kNoSlipWall = 1, kFreeSlipWall = 2;
 
 // One particle set's arrays as pointers: a trivially copyable value that a CUDA kernel takes
 // by value and a CPU loop reads, so that the phases (physics/solvers.hpp) index both alike.

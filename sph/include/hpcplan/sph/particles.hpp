@@ -21,13 +21,19 @@ struct Particles {
   HPCPLAN_SPH_PARTICLE_FIELDS(HPCPLAN_SPH_VECTOR_MEMBER)
 #undef HPCPLAN_SPH_VECTOR_MEMBER
 
-  std::size_t size() const { return x.size(); }
+  std::size_t size() const {
+    return x.size();
+  }
   void resize(std::size_t n);
   // Appends a particle at rest with density rho0 (id = its index).
   void add(const Vec3& position, const Vec3& velocity, double rho0, bool is_wall);
 
-  Vec3 position(std::size_t i) const { return {x[i], y[i], z[i]}; }
-  Vec3 velocity(std::size_t i) const { return {vx[i], vy[i], vz[i]}; }
+  Vec3 position(std::size_t i) const {
+    return {x[i], y[i], z[i]};
+  }
+  Vec3 velocity(std::size_t i) const {
+    return {vx[i], vy[i], vz[i]};
+  }
 
   // Every array as a pointer (valid until the next resize or permute).
   ParticleView view();

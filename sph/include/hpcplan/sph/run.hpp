@@ -20,8 +20,8 @@ struct RunReport {
   std::vector<double> frame_ms, grid_ms;
 };
 
-// Runs the fluid from frame fluid.frames_done() + 1 up to frame `frames` (a restarted fluid
-// carries on where its checkpoint stopped); after_frame sees each frame's number.
+// Runs `frames` more frames, numbered on from fluid.frames_done() (a restarted fluid carries
+// on where its checkpoint stopped); after_frame sees each frame's number.
 RunReport run_frames(Fluid& fluid, std::uint64_t frames,
                      const std::function<void(std::uint64_t frame, const FluidState&)>& after_frame,
                      const std::function<void(const FluidState&)>& after_substep = {});

@@ -29,6 +29,14 @@ struct FluidParams {
   // water: Tait EOS p = B ((rho / rho0)^7 - 1), B = rho0 c0^2 / 7; Monaghan's viscosity alpha.
   double sound_speed = 0.0;
   double alpha = 0.02;
+  // water: delta-SPH density diffusion (Molteni and Colagrossi 2009, with Fourtakas et al.
+  // 2019's hydrostatic part removed), coefficient delta (0.1 in the literature; 0: off).
+  double delta = 0.0;
+  // water: no-slip walls (Adami et al. 2012): each wall particle carries the mirror of the
+  // fluid's velocity around it, and fluid-wall pairs feel the viscous terms with it: Monaghan's
+  // and water's own laminar viscosity (Morris et al. 1997), kinematic viscosity nu (m^2/s).
+  bool no_slip = false;
+  double kinematic_viscosity = 0.0;
   double particle_spacing = 0.0;  // water: dx, the initial lattice spacing
   double frame_dt = 0.02;         // seconds per frame; substeps never cross a frame's end
   double cfl = 0.25;              // dt <= cfl * h / (c + |v|max), and <= cfl sqrt(h / |a|max)

@@ -89,33 +89,59 @@ struct SeedAcceleration {
 
 // ---- water preset (weakly compressible, Wendland C2, Tait) -----------------------------------
 
-// Fluid particles: the continuity equation's rate, the density stepped by it, Tait's pressure.
-// The density goes first, from the velocities of step n (walls at rest), and the
-// accelerations follow from the new densities: the acoustic pair (density, velocity) is
-// stepped symplectically. Both explicit from step n would be forward Euler for sound waves,
-// which grow without bound.
+// Fluid particles: the continuity equation's rate, plus delta-SPH's density diffusion among
+// fluid particles: delta h c0 sum_j psi_ij . grad_i W V_j with psi_ij = 2 (rho_j - rho_i -
+// rho^H_ji) (x_j - x_i) / r^2, where rho^H_ji, the hydrostatic density difference
+// (Fourtakas et al. 2019), keeps the diffusion from flattening the hydrostatic profile; it is
+// taken to first order, rho0^2 g (z_i - z_j) / (7 B) = rho0 g (z_i - z_j) / c0^2 (the next
+// term is ~1e-3 of it). The
+// rate only: the density is stepped in WaterDensityStep, after every rate is read (a particle
+// reads its neighbours' densities here).
 struct WaterContinuity {
   WendlandC2Kernel kernel;
   FluidParams f;
+  double diffusion, hydrostatic;
   explicit WaterContinuity(const FluidParams& params)
-      : kernel(params.smoothing_length), f(params) {}
+      : kernel(params.smoothing_length),
+        f(params),
+        diffusion(params.delta * params.smoothing_length * params.sound_speed),
+        hydrostatic(1.0 / (params.sound_speed * params.sound_speed)) {}
   template <class Neighbours>
   HPCPLAN_HD void operator()(const StepView& s, std::size_t i, Neighbours&& neighbours) const {
     const ParticleView& a = s.a;
     if (a.wall[i]) return;
     const double m = f.particle_mass;
-    const double vxi = a.vx[i], vyi = a.vy[i], vzi = a.vz[i];
-    double drho = 0.0;
+    const double vxi = a.vx[i], vyi = a.vy[i], vzi = a.vz[i], rho_i = a.rho[i];
+    double drho = 0.0, spread = 0.0;
     neighbours([&](std::uint32_t j, double dx, double dy, double dz, double r2) {
       if (r2 == 0.0) return;
       const double r = sqrt(r2);
       const bool wall = a.wall[j];
       const double ux = vxi - (wall ? 0.0 : a.vx[j]), uy = vyi - (wall ? 0.0 : a.vy[j]),
                    uz = vzi - (wall ? 0.0 : a.vz[j]);
-      drho += m * (ux * dx + uy * dy + uz * dz) * kernel.dwdr(r) / r;
+      const double g = kernel.dwdr(r) / r;  // grad_i W = g * (dx, dy, dz)
+      drho += m * (ux * dx + uy * dy + uz * dz) * g;
+      if (!wall && diffusion > 0.0) {
+        // rho^H_ji = rho0 (-gravity . x_ij) / c0^2.
+        const double rho_h = -(f.gravity[0] * dx + f.gravity[1] * dy + f.gravity[2] * dz) *
+                             f.rest_density * hydrostatic;
+        // psi_ij . grad_i W = 2 (drho_ji) (-x_ij . x_ij g) / r^2 = -2 drho_ji g.
+        spread += -2.0 * (a.rho[j] - rho_i - rho_h) * g * m / a.rho[j];
+      }
     });
-    a.drho[i] = drho;
-    a.rho[i] += s.dt * drho;
+    a.drho[i] = drho + diffusion * spread;
+  }
+};
+
+// Fluid particles: the density stepped by its rate, and Tait's pressure from it.
+struct WaterDensityStep {
+  FluidParams f;
+  explicit WaterDensityStep(const FluidParams& params) : f(params) {}
+  template <class Neighbours>
+  HPCPLAN_HD void operator()(const StepView& s, std::size_t i, Neighbours&&) const {
+    const ParticleView& a = s.a;
+    if (a.wall[i]) return;
+    a.rho[i] += s.dt * a.drho[i];
     a.p[i] = tait_pressure(f, a.rho[i]);
   }
 };
@@ -131,7 +157,7 @@ struct WallPressure {
   HPCPLAN_HD void operator()(const StepView& s, std::size_t i, Neighbours&& neighbours) const {
     const ParticleView& a = s.a;
     if (!a.wall[i]) return;
-    double sum_w = 0.0, sum_pw = 0.0, sum_rho_r = 0.0;
+    double sum_w = 0.0, sum_pw = 0.0, sum_rho_r = 0.0, sum_v[3] = {0.0, 0.0, 0.0};
     std::uint32_t count = 0;
     neighbours([&](std::uint32_t j, double dx, double dy, double dz, double r2) {
       if (a.wall[j]) return;
@@ -139,27 +165,37 @@ struct WallPressure {
       sum_w += w;
       sum_pw += a.p[j] * w;
       sum_rho_r += a.rho[j] * w * (f.gravity[0] * dx + f.gravity[1] * dy + f.gravity[2] * dz);
+      sum_v[0] += a.vx[j] * w, sum_v[1] += a.vy[j] * w, sum_v[2] += a.vz[j] * w;
       ++count;
     });
     const double pw = sum_w > 0.0 ? at_least(0.0, (sum_pw + sum_rho_r) / sum_w) : 0.0;
     a.p[i] = pw;
     a.rho[i] = count > 0 ? tait_density(f, pw) : f.rest_density;
     a.neighbours[i] = count;
+    // No-slip: the wall (at rest) carries 2 * 0 - v~, v~ the fluid's interpolated velocity, so
+    // that the velocity interpolated across the wall vanishes on it. (Only the viscous terms
+    // read it; the continuity equation sees the wall's own velocity, zero.)
+    const bool mirror = f.no_slip && a.wall[i] == kNoSlipWall && sum_w > 0.0;
+    a.vx[i] = mirror ? -sum_v[0] / sum_w : 0.0;
+    a.vy[i] = mirror ? -sum_v[1] / sum_w : 0.0;
+    a.vz[i] = mirror ? -sum_v[2] / sum_w : 0.0;
   }
 };
 
-// Fluid particles: the symmetric pressure gradient, Monaghan's artificial viscosity among
-// fluid particles (Pi = -alpha c0 mu / rho_mean; free-slip walls: none against them),
-// gravity.
+// Fluid particles: the symmetric pressure gradient, Monaghan's artificial viscosity
+// (Pi = -alpha c0 mu / rho_mean) among fluid particles and, with no-slip walls, against the
+// walls' mirrored velocities together with water's laminar viscosity; gravity. (With free-slip
+// walls, nothing viscous acts against them.)
 struct WaterAcceleration {
   WendlandC2Kernel kernel;
   FluidParams f;
-  double eta2, visc;
+  double eta2, visc, laminar;
   explicit WaterAcceleration(const FluidParams& params)
       : kernel(params.smoothing_length),
         f(params),
         eta2(0.01 * params.smoothing_length * params.smoothing_length),
-        visc(params.alpha * params.sound_speed) {}
+        visc(params.alpha * params.sound_speed),
+        laminar(params.kinematic_viscosity) {}
   template <class Neighbours>
   HPCPLAN_HD void operator()(const StepView& s, std::size_t i, Neighbours&& neighbours) const {
     const ParticleView& a = s.a;
@@ -177,9 +213,18 @@ struct WaterAcceleration {
       const double g = kernel.dwdr(r) / r;  // grad_i W = g * (dx, dy, dz)
       const double rho_j = a.rho[j];
       double c = pi_term + a.p[j] / (rho_j * rho_j);
-      if (!a.wall[j]) {
-        const double vr = (vxi - a.vx[j]) * dx + (vyi - a.vy[j]) * dy + (vzi - a.vz[j]) * dz;
+      const bool wall = a.wall[j];
+      // A no-slip wall's velocity is its mirror (WallPressure); a free-slip wall has none.
+      if (!wall || (f.no_slip && a.wall[j] == kNoSlipWall)) {
+        const double ux = vxi - a.vx[j], uy = vyi - a.vy[j], uz = vzi - a.vz[j];
+        const double vr = ux * dx + uy * dy + uz * dz;
         if (vr < 0.0) c -= visc * (h * vr / (r2 + eta2)) / (0.5 * (rho_i + rho_j));
+        if (wall && laminar > 0.0) {
+          // Morris et al.: m (mu_i + mu_j) / (rho_i rho_j) (x_ij . grad W) / (r^2 + eta^2) u_ij
+          // with mu = rho nu: m nu (rho_i + rho_j) / (rho_i rho_j) g r^2 / (r^2 + eta^2).
+          const double k = laminar * m * (rho_i + rho_j) / (rho_i * rho_j) * g * r2 / (r2 + eta2);
+          ax += k * ux, ay += k * uy, az += k * uz;
+        }
       }
       c *= -m * g;
       ax += c * dx, ay += c * dy, az += c * dz;

@@ -22,6 +22,7 @@ struct WaterSolver {
   template <class Run>
   static void force_phases(const FluidParams& f, Run&& run) {
     run(WaterContinuity(f));
+    run(WaterDensityStep(f));
     run(WallPressure(f));
     run(WaterAcceleration(f));
   }
