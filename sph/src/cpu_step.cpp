@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <optional>
+#include <vector>
 
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/sph/boundaries.hpp"
@@ -44,26 +46,24 @@ class CpuBackend final : public StepBackend {
     return stable_dt_from(s, {v2, a2, most_neighbours, compressed});
   }
 
+  // Lists are rebuilt at every frame's first substep: a run restarted from a checkpoint (taken
+  // at a frame's end) lists its neighbours where the uninterrupted run did, so it continues
+  // bit for bit.
+  std::string end_frame(FluidState& s) override {
+    lists_stale_ = true;
+    return StepBackend::end_frame(s);
+  }
+
   SubstepReport substep(FluidState& s, double dt) override {
     SubstepReport report;
     for (MovingBox& b : s.boxes) move_box(s.domain, b, dt);
     const Stopwatch clock;
-    s.grid.build(s.particles);
-    if (s.params.reorder_every > 0 &&
-        s.substeps % static_cast<std::uint64_t>(s.params.reorder_every) == 0)
-      s.grid.sort_particles(s.particles);
-    Particles& p = s.particles;
-    const std::uint32_t capacity = list_capacity(s.params.preset);
-    if (lists_.capacity() != capacity) lists_ = NeighbourLists(capacity);
-    // Lists for the fluid, and for the walls with fluid in reach (most of a tall tank's sides
-    // never see any and have nothing to compute). Without walls (the seed's scenarios) there
-    // is nothing to mark.
-    const bool has_walls = s.fluid_count < p.size();
-    if (has_walls) s.grid.mark_cells_of(p, 0);
-    lists_.build(s.grid, p, [&](std::size_t i) {
-      return !p.wall[i] || s.grid.near_marked(p.x[i], p.y[i], p.z[i]);
-    });
+    if (lists_stale_ || moved_beyond_half_skin(s)) {
+      rebuild_lists(s);
+      lists_stale_ = false;
+    }
     report.grid_ms = clock.milliseconds();
+    Particles& p = s.particles;
     const StepView view{p.view(), dt, s.domain, s.boxes.data(), static_cast<int>(s.boxes.size())};
     const Index n = static_cast<Index>(p.size());
     with_solver(s.params.preset, [&](auto solver) {
@@ -79,22 +79,69 @@ class CpuBackend final : public StepBackend {
   }
 
  private:
+  // Grid (reordering the particles by cell when due) and lists for the fluid and for the walls
+  // with fluid in reach (most of a tall tank's sides never see any and have nothing to
+  // compute; without walls, as in the seed's scenarios, there is nothing to mark).
+  void rebuild_lists(FluidState& s) {
+    const FluidParams& f = s.params;
+    Particles& p = s.particles;
+    const double skin = f.list_skin > 0.0 ? f.list_skin * f.support : 0.0;
+    if (skin > 0.0 && (!list_grid_ || list_grid_->support() != f.support + skin))
+      list_grid_.emplace(s.grid.region(), f.support + skin);
+    NeighbourGrid& grid = skin > 0.0 ? *list_grid_ : s.grid;
+    grid.build(p);
+    const bool reorder =
+        f.reorder_every > 0 &&
+        (skin > 0.0 || s.substeps % static_cast<std::uint64_t>(f.reorder_every) == 0);
+    if (reorder) grid.sort_particles(p);
+    const std::uint32_t capacity = list_capacity(f.preset);
+    if (lists_.capacity() != capacity) lists_ = NeighbourLists(capacity);
+    if (s.fluid_count < p.size()) grid.mark_cells_of(p, 0);
+    lists_.build(grid, p, f.support, [&](std::size_t i) {
+      return !p.wall[i] || grid.near_marked(p.x[i], p.y[i], p.z[i]);
+    });
+    list_grid_used_ = &grid;
+    if (skin > 0.0) {
+      x0_ = p.x, y0_ = p.y, z0_ = p.z;
+      half_skin2_ = 0.25 * skin * skin;
+    }
+  }
+
+  // Whether some fluid particle has moved more than half the skin since the lists were built
+  // (two particles closing in by less than the skin keep their pair listed).
+  bool moved_beyond_half_skin(const FluidState& s) const {
+    if (!(s.params.list_skin > 0.0)) return true;  // lists every substep
+    const Particles& p = s.particles;
+    const Index n = static_cast<Index>(p.size());
+    bool moved = false;
+#pragma omp parallel for schedule(static) reduction(|| : moved)
+    for (Index i = 0; i < n; ++i) {
+      const double dx = p.x[i] - x0_[i], dy = p.y[i] - y0_[i], dz = p.z[i] - z0_[i];
+      moved = moved || dx * dx + dy * dy + dz * dz > half_skin2_;
+    }
+    return moved;
+  }
+
   // One force phase over every particle, its neighbours read from the lists. (A member
   // function, not a lambda nested in the solver's: clang rejects a capture of the substep's
   // locals from a generic lambda two levels down inside an OpenMP region.)
   template <class Phase>
   void run_phase(const Phase& phase, const StepView& view, const FluidState& s) const {
     const Particles& p = s.particles;
-    const NeighbourGrid& grid = s.grid;
     const Index n = static_cast<Index>(p.size());
 #pragma omp parallel for schedule(dynamic, 256)
     for (Index i = 0; i < n; ++i) {
       const auto k = static_cast<std::size_t>(i);
-      phase(view, k, [&](auto&& fn) { lists_.for_each(k, grid, p, fn); });
+      phase(view, k, [&](auto&& fn) { lists_.for_each(k, *list_grid_used_, p, fn); });
     }
   }
 
   NeighbourLists lists_;
+  std::optional<NeighbourGrid> list_grid_;  // cells one support plus the skin wide
+  const NeighbourGrid* list_grid_used_ = nullptr;
+  std::vector<double> x0_, y0_, z0_;  // positions when the lists were built
+  double half_skin2_ = 0.0;
+  bool lists_stale_ = true;  // rebuild at the next substep (a frame's first)
 };
 
 }  // namespace
@@ -126,9 +173,10 @@ double stable_dt_from(const FluidState& s, const StepLimits& limits) {
 }
 
 std::uint32_t list_capacity(Preset preset) {
-  // A packed water particle has ~75 neighbours within 2.6 dx, the seed's gas a handful; more
-  // spill over to the grid (slower, still exact).
-  return preset == Preset::water ? 96 : 16;
+  // A packed water particle has ~75 neighbours within 2.6 dx and ~115 within the listed 2.6 dx
+  // x 1.15 (the skin), the seed's gas a handful; more spill over to the grid (slower, still
+  // exact).
+  return preset == Preset::water ? 160 : 16;
 }
 
 std::unique_ptr<StepBackend> make_cpu_backend() {

@@ -9,7 +9,7 @@
 namespace hpcplan::sph {
 
 NeighbourGrid::NeighbourGrid(const Box3& region, double support)
-    : support_(support), support2_(support * support) {
+    : region_(region), support_(support), support2_(support * support) {
   if (!(support > 0.0) || !std::isfinite(support))
     throw InputError("the neighbour grid needs a positive support radius");
   typename GridShape<3>::Coords counts{};

@@ -61,9 +61,11 @@ class NeighbourGrid {
   double support() const { return support_; }
   // The cells' geometry (a GPU backend builds the same grid from it).
   const GridGeometry& geometry() const { return geometry_; }
+  const Box3& region() const { return region_; }
   std::uint64_t cells() const { return shape_.size(); }
 
  private:
+  Box3 region_{};
   double support_ = 0.0, support2_ = 0.0;
   GridGeometry geometry_;
   GridShape<3> shape_;

@@ -19,9 +19,13 @@ class NeighbourLists {
  public:
   explicit NeighbourLists(std::uint32_t capacity = 96) : capacity_(capacity) {}
 
-  // Lists the neighbours (itself excluded) of every particle i with wanted(i).
+  // Lists the neighbours (itself excluded) of every particle i with wanted(i): every particle
+  // within the grid's support. for_each then reports those within `cutoff` (no more than the
+  // grid's support) of where they are now: with a grid wider than the cutoff by a skin, a list
+  // stays complete while no particle has moved more than half the skin (Verlet lists).
   template <class Wanted>
-  void build(const NeighbourGrid& grid, const Particles& p, Wanted&& wanted) {
+  void build(const NeighbourGrid& grid, const Particles& p, double cutoff, Wanted&& wanted) {
+    cutoff2_ = cutoff * cutoff;
     const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
     count_.resize(p.size());
     items_.resize(p.size() * capacity_);
@@ -52,7 +56,8 @@ class NeighbourLists {
     if (c > capacity_) {  // overflowed: ask the grid
       grid.for_each_within(xi, yi, zi, p,
                            [&](std::uint32_t j, double dx, double dy, double dz, double r2) {
-                             if (j != static_cast<std::uint32_t>(i)) fn(j, dx, dy, dz, r2);
+                             if (j != static_cast<std::uint32_t>(i) && r2 < cutoff2_)
+                               fn(j, dx, dy, dz, r2);
                            });
       return;
     }
@@ -63,7 +68,8 @@ class NeighbourLists {
     for (std::uint32_t k = 0; k < c; ++k) {
       const std::uint32_t j = list[k];
       const double dx = xi - px[j], dy = yi - py[j], dz = zi - pz[j];
-      fn(j, dx, dy, dz, dx * dx + dy * dy + dz * dz);
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      if (r2 < cutoff2_) fn(j, dx, dy, dz, r2);
     }
   }
 
@@ -79,6 +85,7 @@ class NeighbourLists {
 
  private:
   std::uint32_t capacity_;
+  double cutoff2_ = 0.0;
   std::vector<std::uint32_t> count_;
   std::vector<std::uint32_t> items_;  // particle i's list: items_[i * capacity_ ...]
 };

@@ -42,6 +42,13 @@ struct FluidParams {
   double cfl = 0.25;              // dt <= cfl * h / (c + |v|max), and <= cfl sqrt(h / |a|max)
   double restitution = 0.5;       // normal velocity kept (reversed) at walls and box faces
   int reorder_every = 4;          // substeps between reorderings of the particles by cell
+  // The CPU backend's neighbour lists (Verlet): listed within support x (1 + list_skin) and
+  // kept while no particle has moved half the skin, rebuilt at every frame's start (so that a
+  // restart from a frame boundary rebuilds where the uninterrupted run did). 0: listed afresh
+  // every substep (the seed's fast gas would outrun any skin); then the particles are
+  // reordered every reorder_every substeps, else at every rebuild. Performance only: the
+  // neighbours within the support are the same, in another order of summation.
+  double list_skin = 0.0;
   // seed: every this many frames (0: never), each fluid particle is given a fresh random
   // velocity, +-kick_horizontal on x and y and 0..kick_up on z, drawn from the run's seed, the
   // frame and the particle's id (so the thread count and the particle order do not matter).
