@@ -307,7 +307,8 @@ TEST(VerletLists, ASkinChangesNothingButRoundOff) {
   }
   for (std::size_t k = 1; k < xs.size(); ++k) {
     double worst = 0.0;
-    for (std::size_t i = 0; i < xs[0].size(); ++i) worst = std::max(worst, std::abs(xs[k][i] - xs[0][i]));
+    for (std::size_t i = 0; i < xs[0].size(); ++i)
+      worst = std::max(worst, std::abs(xs[k][i] - xs[0][i]));
     EXPECT_LT(worst, 1e-9) << "skin run " << k;
     EXPECT_EQ(summaries[k].neighbours_mean, summaries[0].neighbours_mean) << "skin run " << k;
   }
