@@ -59,7 +59,9 @@ int run(const SphArgs& a) {
                           : (o.preset == sph::Preset::seed ? "particles" : "dambreak"));
   o.particles = a.particles;
   o.seed = a.seed;
-  sph::validate(o);
+  // (A restart checks its checkpoint's options instead: the command line's defaults, a seed
+  // preset with --scenario tank, say, need not make a valid problem of their own.)
+  if (a.restart.empty()) sph::validate(o);
   // A restart continues the checkpoint's problem; options that name another are refused.
   std::optional<sph::FluidCheckpoint> restart;
   if (!a.restart.empty()) {
@@ -83,7 +85,7 @@ int run(const SphArgs& a) {
   const double budget = a.memory_mb > 0.0 ? a.memory_mb * 1048576.0
                                           : 0.5 * static_cast<double>(available_memory_bytes());
   if (budget > 0.0 && static_cast<double>(need) > budget)
-    throw InputError("--particles " + std::to_string(a.particles) + " needs about " +
+    throw InputError("--particles " + std::to_string(o.particles) + " needs about " +
                      std::to_string(need / 1048576) + " MiB, over the budget of " +
                      std::to_string(static_cast<std::uint64_t>(budget / 1048576)) +
                      " MiB (--memory-mb)");

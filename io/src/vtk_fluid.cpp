@@ -174,9 +174,11 @@ void VtkSeries::resume(std::uint64_t frame, double frame_dt) {
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(dir_, ec)) {
     const std::string name = e.path().filename().string();
-    if (name.size() != 16 || name.rfind("fluid_", 0) != 0 || name.substr(12) != ".vtu") continue;
-    const std::string digits = name.substr(6, 6);
-    if (digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    // fluid_<at least 6 digits>.vtu (tag_of pads to 6; frames from 1,000,000 on have more).
+    if (name.size() < 16 || name.rfind("fluid_", 0) != 0 || name.substr(name.size() - 4) != ".vtu")
+      continue;
+    const std::string digits = name.substr(6, name.size() - 10);
+    if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
     const std::uint64_t f = std::stoull(digits);
     if (f <= frame) frames.push_back(f);
   }

@@ -1,5 +1,6 @@
 #include "hpcplan/sph/checkpoint.hpp"
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -13,7 +14,38 @@ namespace hpcplan::sph {
 namespace {
 
 constexpr std::string_view kMagic = "hpcplan fluid checkpoint\n";
-constexpr std::uint32_t kFormat = 1;
+// 2: the water preset's delta-SPH, no-slip walls and wall kinds (a format-1 file holds a
+// fluid of the earlier physics).
+constexpr std::uint32_t kFormat = 2;
+
+// The parameters a checkpoint's state was computed with, as numbers: a restart whose rebuilt
+// parameters differ (another physics, another build's presets) is refused.
+std::vector<double> fingerprint(const FluidParams& f) {
+  return {static_cast<double>(f.preset),
+          f.particle_mass,
+          f.rest_density,
+          f.support,
+          f.smoothing_length,
+          f.gravity[0],
+          f.gravity[1],
+          f.gravity[2],
+          f.gas_constant,
+          f.viscosity,
+          f.sound_speed,
+          f.alpha,
+          f.delta,
+          f.no_slip ? 1.0 : 0.0,
+          f.kinematic_viscosity,
+          f.particle_spacing,
+          f.frame_dt,
+          f.cfl,
+          f.restitution,
+          static_cast<double>(f.reorder_every),
+          f.list_skin,
+          static_cast<double>(f.agitate_every),
+          f.kick_horizontal,
+          f.kick_up};
+}
 
 // FNV-1a, 64 bits: enough to tell a damaged file from a sound one (not a security measure).
 std::uint64_t checksum(std::string_view bytes) {
@@ -101,6 +133,7 @@ std::string encode_checkpoint(const FluidOptions& o, std::uint64_t frame, const 
   w.put<std::uint64_t>(o.particles);
   w.put(o.seed);
   w.put(frame);
+  w.put_array(fingerprint(s.params));
   w.put(s.time);
   w.put(s.substeps);
   w.put<std::uint64_t>(s.fluid_count);
@@ -138,9 +171,9 @@ FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& nam
     r.fail("was written by hpcplan " + version + "; this is hpcplan " +
            std::string(checkpoint_version()));
   const auto size = r.get<std::uint64_t>();
-  if (size + sizeof(std::uint64_t) > r.left())
+  if (size > r.left() || r.left() - size < sizeof(std::uint64_t))
     r.fail("is cut short (a damaged or incomplete checkpoint)");
-  if (size + sizeof(std::uint64_t) < r.left()) r.fail("has bytes after its end (damaged)");
+  if (r.left() - size > sizeof(std::uint64_t)) r.fail("has bytes after its end (damaged)");
   const std::string_view payload = bytes.substr(bytes.size() - r.left(), size);
   std::uint64_t stored = 0;
   std::memcpy(&stored, bytes.data() + bytes.size() - sizeof stored, sizeof stored);
@@ -163,8 +196,21 @@ FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& nam
     p.fail(std::string("describes a run hpcplan refuses: ") + e.what());
   }
   c.frame = p.get<std::uint64_t>();
+  // The file must hold at least the fields of the particles it claims (half of them: the water
+  // lattice rounds), before the fluid is built: a small file cannot make it allocate much.
+  if (static_cast<double>(c.options.particles) * 0.5 * kParticleFieldBytes >
+      static_cast<double>(payload.size()))
+    p.fail("claims " + std::to_string(c.options.particles) +
+           " particles but is too small to hold them (damaged)");
   c.state = make_fluid(c.options);  // parameters, domain, grid, walls: as at the start
   FluidState& s = c.state;
+  std::vector<double> saved_params;
+  const std::vector<double> built_params = fingerprint(s.params);
+  p.get_array(saved_params, built_params.size());
+  for (std::size_t k = 0; k < built_params.size(); ++k)
+    if (!(saved_params[k] == built_params[k]))
+      p.fail("was computed with other fluid parameters (another build's physics or presets)");
+  const FluidState built = s;  // the walls as they are built, to check the saved ones against
   s.time = p.get<double>();
   s.substeps = p.get<std::uint64_t>();
   const auto fluid = p.get<std::uint64_t>();
@@ -189,8 +235,27 @@ FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& nam
     c.front.emplace_back(t, p.get<double>());
   }
   if (p.left() != 0) p.fail("has bytes after its end (damaged)");
-  if (!(s.time >= 0.0) || c.frame > 100'000'000)
-    p.fail("holds an impossible time or frame (damaged)");
+  // A frame ends at a multiple of frame_dt (Fluid::advance_frame).
+  const double end = static_cast<double>(c.frame) * s.params.frame_dt;
+  if (c.frame > 100'000'000 || !(std::abs(s.time - end) <= 1e-9 * (1.0 + end)))
+    p.fail("holds a time that is not its frame's end (damaged)");
+  for (const MovingBox& b : s.boxes)
+    for (int k = 0; k < 3; ++k)
+      if (!(b.box.lo[k] >= s.domain.lo[k] && b.box.hi[k] <= s.domain.hi[k] &&
+            b.box.lo[k] <= b.box.hi[k] && std::isfinite(b.velocity[k])))
+        p.fail("holds a box outside the domain (damaged)");
+  // The ids are a permutation, and each wall particle is the one built (walls never move).
+  std::vector<std::uint8_t> seen(n, 0);
+  for (std::uint64_t k = 0; k < n; ++k) {
+    const std::uint32_t id = s.particles.id[k];
+    if (id >= n || seen[id]) p.fail("holds particle ids that are not a permutation (damaged)");
+    seen[id] = 1;
+    const Particles& b = built.particles;
+    if (s.particles.wall[k] != b.wall[id] ||
+        (b.wall[id] && (s.particles.x[k] != b.x[id] || s.particles.y[k] != b.y[id] ||
+                        s.particles.z[k] != b.z[id])))
+      p.fail("holds walls other than its problem's (another build's walls, or damaged)");
+  }
   return c;
 }
 

@@ -188,7 +188,9 @@ FluidState make_water(const FluidOptions& o) {
                         f.rest_density, true);
         // The dam break is a slab a/4 wide standing in for Martin and Moyce's plane flow: its
         // two side walls are symmetry planes, free-slip (no friction the experiment had not).
-        if (o.scenario == Scenario::dambreak && (j < 0 || j >= cy))
+        // Only the side walls proper: the floor and end-wall particles beyond the slab's width
+        // are those walls' mirror images across the symmetry planes, so they stay no-slip.
+        if (o.scenario == Scenario::dambreak && (j < 0 || j >= cy) && k >= 0 && i >= 0 && i < cx)
           s.particles.wall.back() = kFreeSlipWall;
       }
   const double pad = kWallLayers * w.dx;

@@ -257,6 +257,66 @@ TEST(SharedPhases, WaterContinuityWallPressureAndIntegrate) {
   EXPECT_EQ(c.p.z[1], 0.0);  // a wall never moves
 }
 
+FluidParams water_params() {
+  FluidParams f;
+  f.preset = Preset::water;
+  f.smoothing_length = 0.1;
+  f.support = 0.2;
+  f.particle_mass = 1.0;
+  f.rest_density = 1000.0;
+  f.sound_speed = 10.0;
+  f.alpha = 0.1;
+  f.gravity = {0, 0, -10.0};
+  return f;
+}
+
+// delta-SPH: a denser neighbour at the same height raises the density rate by
+// delta h c0 * 2 (rho_j - rho_i) (-dwdr / r) m / rho_j; two particles stacked at exactly the
+// hydrostatic density difference rho0 g dz / c0^2 diffuse nothing.
+TEST(SharedPhases, DensityDiffusionSpreadsOnlyTheNonHydrostaticPart) {
+  FluidParams f = water_params();
+  f.delta = 0.1;
+  Cloud c{{}, f.support};
+  c.p.add({0, 0, 0.5}, {}, 1000.0, false);
+  c.p.add({0.1, 0, 0.5}, {}, 1010.0, false);  // same height, denser
+  c.run(WaterContinuity(f), c.view(1e-3));
+  const double nw = 21.0 / (16.0 * kPiHand * 1e-3);
+  const double g = -5.0 * nw / 0.1 * 0.125 / 0.1;  // dwdr(0.1) / 0.1
+  EXPECT_NEAR(c.p.drho[0], 0.1 * 0.1 * 10.0 * 2.0 * 10.0 * -g * 1.0 / 1010.0, 1e-9);
+  EXPECT_NEAR(c.p.drho[1], -0.1 * 0.1 * 10.0 * 2.0 * 10.0 * -g * 1.0 / 1000.0, 1e-9);
+  Cloud h{{}, f.support};
+  const double lower = 1000.0 + 1000.0 * 10.0 * 0.1 / 100.0;  // rho0 g dz / c0^2 = 10 kg/m^3
+  h.p.add({0, 0, 0.6}, {}, 1000.0, false);
+  h.p.add({0, 0, 0.5}, {}, lower, false);
+  h.run(WaterContinuity(f), h.view(1e-3));
+  EXPECT_NEAR(h.p.drho[0], 0.0, 1e-9);
+  EXPECT_NEAR(h.p.drho[1], 0.0, 1e-9);
+}
+
+// No-slip: a wall particle carries the mirror of the fluid's velocity (one fluid neighbour:
+// exactly minus its velocity), a free-slip wall none; a fluid particle sliding past a no-slip
+// wall is slowed, past a free-slip wall it is not.
+TEST(SharedPhases, NoSlipWallsMirrorTheFluidAndSlowIt) {
+  FluidParams f = water_params();
+  f.no_slip = true;
+  f.kinematic_viscosity = 1e-6;
+  double ax[2];
+  for (const std::uint8_t kind : {kNoSlipWall, kFreeSlipWall}) {
+    Cloud c{{}, f.support};
+    c.p.add({0, 0, 0.1}, {1.0, 0.0, 0.0}, 1000.0, false);
+    c.p.add({0.05, 0, 0.0}, {}, 1000.0, true);
+    c.p.wall[1] = kind;
+    c.p.p[0] = 0.0;
+    c.run(WallPressure(f), c.view());
+    EXPECT_EQ(c.p.vx[1], kind == kNoSlipWall ? -1.0 : 0.0);
+    c.p.p[1] = 0.0;  // no pressure: only the viscous terms act
+    c.run(WaterAcceleration(f), c.view());
+    ax[kind == kNoSlipWall ? 0 : 1] = c.p.ax[0];
+  }
+  EXPECT_LT(ax[0], -1e-3);  // slowed
+  EXPECT_EQ(ax[1], 0.0);    // free slip: nothing viscous against the wall
+}
+
 TEST(SharedPushOut, LeavesThroughAClearFaceOfOverlappingBoxes) {
   // Box A [0,1]^3 and box B = A shifted by 0.9 in x; a particle 0.05 inside A's right face
   // would land in B's interior there, so it leaves A through its next nearest face (y = 1,

@@ -36,7 +36,8 @@ class VtkSeries {
   // A restarted run's series: the frames up to `frame` already in the directory (files
   // fluid_NNNNNN.vtu, with robot_NNNNNN.vtu where written), at time NNNNNN x frame_dt (a
   // frame ends at that exact multiple), so that the .pvd lists them as the uninterrupted run
-  // would.
+  // would when the checkpoint's frame is one it wrote anyway (a multiple of --every): a run
+  // that ended at another frame also wrote that last frame, and it stays listed.
   void resume(std::uint64_t frame, double frame_dt);
 
  private:

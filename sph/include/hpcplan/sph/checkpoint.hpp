@@ -1,6 +1,6 @@
 #pragma once
 // A fluid run's checkpoint: everything the next frames depend on, so that a run restarted from
-// it continues bit for bit as the uninterrupted run would (tests/sph: Checkpoint.*).
+// it continues bit for bit as the uninterrupted run would (tests/sph/test_sph_cli.sh).
 //
 // What is saved, and why it suffices:
 //   - the problem (preset, scenario, particles asked for, seed): the parameters, domain,
@@ -11,8 +11,12 @@
 //   - every particle field of particle_fields.hpp in the current particle order (the order of
 //     the sums, so the order of round-off), and every box's position and velocity;
 //   - the dam break's front rows so far (so that --front-csv covers the whole run).
-// Nothing else carries over a frame boundary: the CPU backend rebuilds its grid and lists every
-// substep, the CUDA backend sorts by cell every substep.
+// Nothing else carries over a frame boundary: the CPU backend rebuilds its grid and neighbour
+// lists at every frame's first substep (its Verlet lists live within a frame), the CUDA
+// backend sorts by cell every substep.
+// Checked on reading: the parameters the state was computed with (as numbers) equal those its
+// problem builds now, the time is its frame's end, the ids are a permutation and the walls are
+// the built ones, and the file is large enough for the particles it claims.
 //
 // The file: a magic line, the format and the hpcplan version that wrote it, the payload
 // (little-endian, as the machines hpcplan runs on), and a 64-bit checksum of the payload. A

@@ -93,8 +93,8 @@ struct SeedAcceleration {
 // fluid particles: delta h c0 sum_j psi_ij . grad_i W V_j with psi_ij = 2 (rho_j - rho_i -
 // rho^H_ji) (x_j - x_i) / r^2, where rho^H_ji, the hydrostatic density difference
 // (Fourtakas et al. 2019), keeps the diffusion from flattening the hydrostatic profile; it is
-// taken to first order, rho0^2 g (z_i - z_j) / (7 B) = rho0 g (z_i - z_j) / c0^2 (the next
-// term is ~1e-3 of it). The
+// taken to first order, rho0^2 g (z_i - z_j) / (7 B) = rho0 g (z_i - z_j) / c0^2 (within a
+// kernel's reach the next term is below 1e-3 of it; across a whole column, 2.5%). The
 // rate only: the density is stepped in WaterDensityStep, after every rate is read (a particle
 // reads its neighbours' densities here).
 struct WaterContinuity {
