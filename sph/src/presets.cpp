@@ -267,9 +267,11 @@ std::uint64_t estimated_bytes(const FluidOptions& o) {
     particles = ex * ey * ez;  // fluid and walls together never exceed the padded box
     cells = std::ceil(ex / 2.6) * std::ceil(ey / 2.6) * std::ceil(ez / 2.6);
   }
-  // Particles twice over (the reordering's scratch copy), the grid, the neighbour lists.
-  return static_cast<std::uint64_t>(particles * (2.0 * Particles::kBytesPerParticle + 16.0) +
-                                    8.0 * cells) +
+  // Particles twice over (the reordering's scratch copy), the grid (twice with Verlet lists:
+  // the wider list grid), the Verlet lists' reference positions (24 B), the neighbour lists.
+  const double verlet = o.preset == Preset::water ? 24.0 + 16.0 : 0.0;
+  return static_cast<std::uint64_t>(
+             particles * (2.0 * Particles::kBytesPerParticle + 16.0 + verlet) + 16.0 * cells) +
          NeighbourLists::bytes_for(static_cast<std::uint64_t>(particles), list_capacity(o.preset));
 }
 
