@@ -29,8 +29,10 @@ echo "== build (Release)"
 # kernels include the CPU's physics source, so this is the check that the GPU side still
 # compiles after a CPU change. Without one, the build is the CPU one.
 cuda_required=()
-if command -v nvcc >/dev/null || [[ -x /usr/local/cuda/bin/nvcc ]]; then
+if command -v nvcc >/dev/null; then
   cuda_required=(-DHPCPLAN_REQUIRE_CUDA=ON)
+elif [[ -x /usr/local/cuda/bin/nvcc ]]; then  # installed off the PATH: name it
+  cuda_required=(-DHPCPLAN_REQUIRE_CUDA=ON -DCMAKE_CUDA_COMPILER=/usr/local/cuda/bin/nvcc)
 fi
 bash scripts/build.sh build "${cuda_required[@]}"
 echo "== tests (Release)"
