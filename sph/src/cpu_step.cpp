@@ -1,9 +1,12 @@
 // The CPU backend: the loops and bookkeeping around the one physics source (physics.hpp).
 // Each phase runs as an OpenMP parallel for over the particles, reading each particle's
 // neighbour list; a phase writes only its particle's entries, so there are no atomics and the
-// result does not depend on the thread count. A substep: move the boxes, build the grid
-// (reorder the particles by cell every few substeps), list the neighbours, run the preset's
-// force phases (physics/solvers.hpp), then Integrate.
+// result does not depend on the thread count. A substep: move the boxes; when the lists are
+// stale (a frame's first substep, a particle moved half the skin, or every substep without a
+// skin) build the grid, reorder the particles by cell when due and list the neighbours; run
+// the preset's force phases (physics/solvers.hpp), then Integrate. With a skin the lists come
+// from the backend's own wider grid and FluidState::grid is left as built (its geometry is
+// what the CUDA backend reads).
 #include <algorithm>
 #include <cmath>
 #include <cstddef>

@@ -78,22 +78,22 @@ const FluidState& Fluid::full_state() const {
 namespace {
 
 // What is wrong with fluid particle i (physics/push_out.hpp's check, which the CUDA backend
-// runs too), in words; empty when nothing is.
-std::string problem_of(const FluidState& s, std::size_t i) {
+// runs too); words only for the one reported.
+ParticleProblem problem_of(const FluidState& s, std::size_t i) {
   const Particles& p = s.particles;
   const double x[3] = {p.x[i], p.y[i], p.z[i]}, v[3] = {p.vx[i], p.vy[i], p.vz[i]};
-  const ParticleProblem kind = particle_problem(
-      s.domain, s.boxes.data(), static_cast<int>(s.boxes.size()), x, v, p.rho[i], p.p[i]);
-  return describe(kind, p.id[i]);
+  return particle_problem(s.domain, s.boxes.data(), static_cast<int>(s.boxes.size()), x, v,
+                          p.rho[i], p.p[i]);
 }
 
 }  // namespace
 
 std::string describe(ParticleProblem kind, std::uint32_t id) {
+  if (kind == ParticleProblem::none) return "";
   const std::string who = "particle " + std::to_string(id);
   switch (kind) {
     case ParticleProblem::none:
-      return "";
+      break;
     case ParticleProblem::position:
       return "non-finite position of " + who;
     case ParticleProblem::velocity:
@@ -115,8 +115,10 @@ std::string first_problem(const FluidState& s) {
   std::ptrdiff_t first = n;
 #pragma omp parallel for schedule(static) reduction(min : first)
   for (std::ptrdiff_t i = 0; i < n; ++i)
-    if (!p.wall[i] && i < first && !problem_of(s, static_cast<std::size_t>(i)).empty()) first = i;
-  return first < n ? problem_of(s, static_cast<std::size_t>(first)) : "";
+    if (!p.wall[i] && i < first &&
+        problem_of(s, static_cast<std::size_t>(i)) != ParticleProblem::none)
+      first = i;
+  return first < n ? describe(problem_of(s, static_cast<std::size_t>(first)), p.id[first]) : "";
 }
 
 }  // namespace hpcplan::sph

@@ -218,7 +218,7 @@ TEST(SharedPhases, PairForcesSumToZeroMomentum) {
   }
 }
 
-TEST(SharedPhases, WaterContinuityWallPressureAndIntegrate) {
+FluidParams water_params() {
   FluidParams f;
   f.preset = Preset::water;
   f.smoothing_length = 0.1;
@@ -226,7 +226,13 @@ TEST(SharedPhases, WaterContinuityWallPressureAndIntegrate) {
   f.particle_mass = 1.0;
   f.rest_density = 1000.0;
   f.sound_speed = 10.0;
+  f.alpha = 0.1;
   f.gravity = {0, 0, -10.0};
+  return f;
+}
+
+TEST(SharedPhases, WaterContinuityWallPressureAndIntegrate) {
+  const FluidParams f = water_params();
   Cloud c{{}, f.support};
   c.p.add({0, 0, 0.1}, {0, 0, -1.0}, 1000.0, false);  // fluid, falling onto
   c.p.add({0, 0, 0.0}, {0, 0, 0}, 1000.0, true);      // a wall particle 0.1 below
@@ -255,19 +261,6 @@ TEST(SharedPhases, WaterContinuityWallPressureAndIntegrate) {
   EXPECT_DOUBLE_EQ(c.p.z[0], 0.1 + dt * (-1.0 + dt * 2.0));
   integrate(c.view(dt), 1);
   EXPECT_EQ(c.p.z[1], 0.0);  // a wall never moves
-}
-
-FluidParams water_params() {
-  FluidParams f;
-  f.preset = Preset::water;
-  f.smoothing_length = 0.1;
-  f.support = 0.2;
-  f.particle_mass = 1.0;
-  f.rest_density = 1000.0;
-  f.sound_speed = 10.0;
-  f.alpha = 0.1;
-  f.gravity = {0, 0, -10.0};
-  return f;
 }
 
 // delta-SPH: a denser neighbour at the same height raises the density rate by

@@ -73,9 +73,6 @@ class NeighbourLists {
     }
   }
 
-  std::uint32_t count(std::size_t i) const {
-    return count_[i];
-  }
   std::uint32_t capacity() const {
     return capacity_;
   }
