@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <type_traits>
@@ -260,6 +261,10 @@ FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& nam
 }
 
 FluidCheckpoint read_checkpoint(const std::string& path) {
+  // Only a regular file: a device or a pipe (/dev/zero, a FIFO) would be read without end.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError("--restart '" + path + "': is not a readable regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("--restart '" + path + "': cannot be read");
   std::ostringstream bytes;

@@ -163,6 +163,11 @@ grep -q "continues --preset seed --scenario dynamic --particles 800" "$dir/err.t
   fail "another problem: $(cat "$dir/err.txt")"
 bad "restart past --frames" --restart "$dir/ck.bin" --frames 10
 bad "unwritable checkpoint" --checkpoint /nonexistent-dir/c.bin
+bad "empty restart path" --restart ""
+bad "empty checkpoint path" --checkpoint ""
+bad "restart from a device" --restart /dev/zero
+bad "checkpoint onto the front CSV" --preset water --checkpoint "$dir/same.csv" --front-csv "$dir/same.csv"
+grep -q "also another output's file" "$dir/err.txt" || fail "same file: $(cat "$dir/err.txt")"
 # --backend cuda: refused with its reason where no GPU can run it (this build may or may not have
 # the backend); where one can, it runs and reports its backend.
 if "$bin" sph --backend cuda --particles 500 --frames 2 --json > "$dir/cuda.json" 2> "$dir/err.txt"; then
