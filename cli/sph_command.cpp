@@ -34,7 +34,7 @@ struct SphArgs {
   std::uint64_t frames = 100;
   std::uint64_t seed = 1;
   int threads = 0;
-  std::string vtk_dir, front_csv, output, backend = "cpu";
+  std::string vtk_dir, front_csv, gauges_csv, output, backend = "cpu";
   std::uint64_t every = 10;
   double memory_mb = 0.0;
   bool json = false;
@@ -81,7 +81,7 @@ int run(const SphArgs& a) {
   if (!a.checkpoint.empty()) {
     require_writable_destination(a.checkpoint, "--checkpoint");
     // One file, one content: the checkpoint would overwrite another output or vice versa.
-    for (const std::string* other : {&a.output, &a.front_csv})
+    for (const std::string* other : {&a.output, &a.front_csv, &a.gauges_csv})
       if (!other->empty() && std::filesystem::weakly_canonical(*other) ==
                                  std::filesystem::weakly_canonical(a.checkpoint))
         throw InputError("--checkpoint '" + a.checkpoint + "' is also another output's file");
@@ -101,6 +101,12 @@ int run(const SphArgs& a) {
       throw InputError(
           "--front-csv records the dam break's surge front: it needs --scenario dambreak");
     require_writable_destination(a.front_csv, "--front-csv");
+  }
+  if (!a.gauges_csv.empty()) {
+    if (o.scenario != sph::Scenario::marin)
+      throw InputError(
+          "--gauges-csv records SPHERIC Test 2's water heights: it needs --scenario marin");
+    require_writable_destination(a.gauges_csv, "--gauges-csv");
   }
   if (!a.output.empty()) require_writable_destination(a.output, "--output");
   if (!a.vtk_dir.empty()) prepare_vtk_dir(a.vtk_dir);
@@ -124,16 +130,13 @@ int run(const SphArgs& a) {
     else
       vtk->write(0, fluid.full_state());
   }
-  // The surge front, every substep.
-  std::vector<std::pair<double, double>> front;
-  if (restart) front = std::move(restart->front);
-  std::function<void(const sph::FluidState&)> watch_front;
-  if (o.scenario == sph::Scenario::dambreak) {
-    watch_front = [&front](const sph::FluidState& s) {
-      const sph::SurgeFront f = sph::dam_break_front(s);
-      front.emplace_back(f.t, f.z);
-    };
-    if (!restart) watch_front(fluid.state());
+  // The scenario's probes (the dam break's front, the MARIN gauges), read between substeps.
+  sph::Probes probes = sph::probes_for(o.scenario);
+  if (restart) probes.rows = std::move(restart->probe_rows);
+  std::function<void(const sph::FluidState&)> watch;
+  if (!probes.columns.empty()) {
+    watch = [&probes](const sph::FluidState& s) { sph::record_probes(s, probes); };
+    if (!restart) watch(fluid.state());
   }
   const Stopwatch clock;
   info.report = sph::run_frames(
@@ -146,17 +149,18 @@ int run(const SphArgs& a) {
         if (!a.checkpoint.empty() && (frame % a.checkpoint_every == 0 || frame == a.frames) &&
             sph::first_problem(fluid.full_state()).empty())
           write_file_atomically(a.checkpoint,
-                                sph::encode_checkpoint(o, frame, fluid.full_state(), front));
+                                sph::encode_checkpoint(o, frame, fluid.full_state(), probes.rows));
       },
-      watch_front);
+      watch);
   if (restart && !a.checkpoint.empty() && restart->frame == a.frames)
     write_file_atomically(a.checkpoint,
-                          sph::encode_checkpoint(o, a.frames, fluid.full_state(), front));
+                          sph::encode_checkpoint(o, a.frames, fluid.full_state(), probes.rows));
   if (restart) info.restarted_at_frame = restart->frame;
   info.seconds = clock.seconds();
   info.summary = sph::summarise(fluid.full_state());
 
-  if (!a.front_csv.empty()) write_file_atomically(a.front_csv, io::front_csv(front));
+  for (const std::string* csv : {&a.front_csv, &a.gauges_csv})
+    if (!csv->empty()) write_file_atomically(*csv, io::probes_csv(probes));
   const std::string json = io::to_json(info).dump() + "\n";
   if (!a.output.empty()) write_file_atomically(a.output, json);
   std::fputs(a.json ? json.c_str() : io::to_summary(info).c_str(), stdout);
@@ -172,8 +176,8 @@ Action register_sph_command(CLI::App& app) {
   cmd->add_option("--preset", a.preset, "seed (the paper's parameters) | water (validated WCSPH)")
       ->capture_default_str();
   cmd->add_option("--scenario", a.scenario,
-                  "seed: particles|static|dynamic (default particles); water: dambreak|tank|column "
-                  "(default dambreak)");
+                  "seed: particles|static|dynamic (default particles); water: "
+                  "dambreak|tank|column|marin (default dambreak)");
   add_number(cmd, "--particles", a.particles, "Fluid particles (water rounds to its lattice)", 1,
              200'000'000)
       ->capture_default_str();
@@ -190,6 +194,9 @@ Action register_sph_command(CLI::App& app) {
   add_number(cmd, "--every", a.every, "With --vtk: write every K-th frame", 1, 100'000'000)
       ->capture_default_str();
   cmd->add_option("--front-csv", a.front_csv, "Dam break: write the surge front as T,Z rows");
+  cmd->add_option("--gauges-csv", a.gauges_csv,
+                  "marin: write the water heights at SPHERIC Test 2's gauges as t,H1,H2,H3,H4 "
+                  "rows (m, every 5 ms)");
   add_number(cmd, "--memory-mb", a.memory_mb,
              "Refuse runs needing more memory (default: half the available)", 1, 1e9);
   cmd->add_flag("--json", a.json, "Print the result as one JSON object");

@@ -105,12 +105,17 @@ std::string to_summary(const SphRun& r) {
   return s;
 }
 
-std::string front_csv(const std::vector<std::pair<double, double>>& t_z) {
-  std::string s = "T,Z\n";
-  char buf[64];
-  for (const auto& [t, z] : t_z) {
-    std::snprintf(buf, sizeof buf, "%.6f,%.6f\n", t, z);
-    s += buf;
+std::string probes_csv(const sph::Probes& probes) {
+  std::string s;
+  for (std::size_t k = 0; k < probes.columns.size(); ++k) s += (k ? "," : "") + probes.columns[k];
+  s += "\n";
+  char buf[32];
+  for (const std::vector<double>& row : probes.rows) {
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      std::snprintf(buf, sizeof buf, "%s%.6f", k ? "," : "", row[k]);
+      s += buf;
+    }
+    s += "\n";
   }
   return s;
 }

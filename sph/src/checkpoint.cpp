@@ -1,23 +1,23 @@
 #include "hpcplan/sph/checkpoint.hpp"
 
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <type_traits>
 
+#include "hpcplan/core/checkpoint_file.hpp"
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/sph/diagnostics.hpp"
 #include "hpcplan/sph/particle_fields.hpp"
 
 namespace hpcplan::sph {
+
+using checkpoint::Reader;
+using checkpoint::Writer;
 
 namespace {
 
 constexpr std::string_view kMagic = "hpcplan fluid checkpoint\n";
 // 2: the water preset's delta-SPH, no-slip walls and wall kinds (a format-1 file holds a
 // fluid of the earlier physics).
-constexpr std::uint32_t kFormat = 2;
+constexpr std::uint32_t kFormat = 3;  // 3: probe rows of any width (2: the front's pairs)
 
 // The parameters a checkpoint's state was computed with, as numbers: a restart whose rebuilt
 // parameters differ (another physics, another build's presets) is refused.
@@ -48,86 +48,14 @@ std::vector<double> fingerprint(const FluidParams& f) {
           f.kick_up};
 }
 
-// FNV-1a, 64 bits: enough to tell a damaged file from a sound one (not a security measure).
-std::uint64_t checksum(std::string_view bytes) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  for (const char c : bytes) {
-    h ^= static_cast<unsigned char>(c);
-    h *= 0x100000001b3ull;
-  }
-  return h;
-}
-
-class Writer {
- public:
-  template <class T>
-  void put(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    out_.append(reinterpret_cast<const char*>(&v), sizeof v);
-  }
-  template <class T>
-  void put_array(const std::vector<T>& a) {
-    put<std::uint64_t>(a.size());
-    out_.append(reinterpret_cast<const char*>(a.data()), a.size() * sizeof(T));
-  }
-  void put_string(std::string_view s) {
-    put<std::uint64_t>(s.size());
-    out_.append(s);
-  }
-  std::string& bytes() { return out_; }
-
- private:
-  std::string out_;
-};
-
-class Reader {
- public:
-  Reader(std::string_view in, const std::string& name) : in_(in), name_(name) {}
-  template <class T>
-  T get() {
-    static_assert(std::is_trivially_copyable_v<T>);
-    T v;
-    std::memcpy(&v, take(sizeof v), sizeof v);
-    return v;
-  }
-  template <class T>
-  void get_array(std::vector<T>& a, std::uint64_t expected) {
-    const auto n = get<std::uint64_t>();
-    if (n != expected)
-      fail("holds " + std::to_string(n) + " entries where " + std::to_string(expected) +
-           " were expected");
-    a.resize(n);
-    if (n > 0) std::memcpy(a.data(), take(n * sizeof(T)), n * sizeof(T));
-  }
-  std::string get_string() {
-    const auto n = get<std::uint64_t>();
-    return std::string(take(n), n);
-  }
-  std::size_t left() const { return in_.size() - at_; }
-  [[noreturn]] void fail(const std::string& what) const {
-    throw InputError("--restart '" + name_ + "': " + what);
-  }
-
- private:
-  const char* take(std::uint64_t n) {
-    if (n > in_.size() - at_) fail("is cut short (a damaged or incomplete checkpoint)");
-    const char* p = in_.data() + at_;
-    at_ += n;
-    return p;
-  }
-  std::string_view in_;
-  std::size_t at_ = 0;
-  const std::string& name_;
-};
-
 }  // namespace
 
 std::string_view checkpoint_version() {
-  return HPCPLAN_VERSION_STRING;
+  return checkpoint::version();
 }
 
 std::string encode_checkpoint(const FluidOptions& o, std::uint64_t frame, const FluidState& s,
-                              const std::vector<std::pair<double, double>>& front) {
+                              const std::vector<std::vector<double>>& probe_rows) {
   Writer w;
   w.put(static_cast<std::uint8_t>(o.preset));
   w.put(static_cast<std::uint8_t>(o.scenario));
@@ -145,47 +73,22 @@ std::string encode_checkpoint(const FluidOptions& o, std::uint64_t frame, const 
 #define HPCPLAN_SPH_SAVE_FIELD(type, name) w.put_array(s.particles.name);
   HPCPLAN_SPH_PARTICLE_FIELDS(HPCPLAN_SPH_SAVE_FIELD)
 #undef HPCPLAN_SPH_SAVE_FIELD
-  w.put<std::uint64_t>(front.size());
-  for (const auto& [t, z] : front) w.put(t), w.put(z);
-  const std::string& payload = w.bytes();
-
-  Writer file;
-  file.bytes().append(kMagic);
-  file.put(kFormat);
-  file.put_string(checkpoint_version());
-  file.put<std::uint64_t>(payload.size());
-  file.bytes().append(payload);
-  file.put(checksum(payload));
-  return std::move(file.bytes());
+  w.put<std::uint64_t>(probe_rows.size());
+  w.put<std::uint64_t>(probe_rows.empty() ? 0 : probe_rows.front().size());
+  for (const std::vector<double>& row : probe_rows)
+    for (const double v : row) w.put(v);
+  return checkpoint::seal(kMagic, kFormat, w.bytes());
 }
 
 FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
-  Reader head(bytes, name);
-  if (bytes.substr(0, kMagic.size()) != kMagic) head.fail("is not an hpcplan fluid checkpoint");
-  Reader r(bytes.substr(kMagic.size()), name);
-  const auto format = r.get<std::uint32_t>();
-  if (format != kFormat)
-    r.fail("has checkpoint format " + std::to_string(format) + "; this hpcplan reads format " +
-           std::to_string(kFormat));
-  const std::string version = r.get_string();
-  if (version != checkpoint_version())
-    r.fail("was written by hpcplan " + version + "; this is hpcplan " +
-           std::string(checkpoint_version()));
-  const auto size = r.get<std::uint64_t>();
-  if (size > r.left() || r.left() - size < sizeof(std::uint64_t))
-    r.fail("is cut short (a damaged or incomplete checkpoint)");
-  if (r.left() - size > sizeof(std::uint64_t)) r.fail("has bytes after its end (damaged)");
-  const std::string_view payload = bytes.substr(bytes.size() - r.left(), size);
-  std::uint64_t stored = 0;
-  std::memcpy(&stored, bytes.data() + bytes.size() - sizeof stored, sizeof stored);
-  if (stored != checksum(payload)) r.fail("fails its checksum (a damaged checkpoint)");
-
+  const std::string_view payload =
+      checkpoint::open(bytes, kMagic, kFormat, "an hpcplan fluid checkpoint", name);
   Reader p(payload, name);
   FluidCheckpoint c;
   const auto preset = p.get<std::uint8_t>();
   const auto scenario = p.get<std::uint8_t>();
   if (preset > static_cast<std::uint8_t>(Preset::water) ||
-      scenario > static_cast<std::uint8_t>(Scenario::column))
+      scenario > static_cast<std::uint8_t>(Scenario::marin))
     p.fail("names an unknown preset or scenario");
   c.options.preset = static_cast<Preset>(preset);
   c.options.scenario = static_cast<Scenario>(scenario);
@@ -229,12 +132,13 @@ FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& nam
   HPCPLAN_SPH_PARTICLE_FIELDS(HPCPLAN_SPH_LOAD_FIELD)
 #undef HPCPLAN_SPH_LOAD_FIELD
   const auto rows = p.get<std::uint64_t>();
-  if (rows > p.left() / (2 * sizeof(double))) p.fail("is cut short (a damaged checkpoint)");
-  c.front.reserve(rows);
-  for (std::uint64_t k = 0; k < rows; ++k) {
-    const double t = p.get<double>();
-    c.front.emplace_back(t, p.get<double>());
-  }
+  const auto columns = p.get<std::uint64_t>();
+  const std::size_t expected = probes_for(c.options.scenario).columns.size();
+  if (rows > 0 && (expected == 0 || columns != expected || rows > p.left() / (columns * 8)))
+    p.fail("holds probe rows that do not fit its scenario (damaged)");
+  c.probe_rows.assign(rows, std::vector<double>(columns));
+  for (std::vector<double>& row : c.probe_rows)
+    for (double& v : row) v = p.get<double>();
   if (p.left() != 0) p.fail("has bytes after its end (damaged)");
   // A frame ends at a multiple of frame_dt (Fluid::advance_frame).
   const double end = static_cast<double>(c.frame) * s.params.frame_dt;
@@ -261,16 +165,7 @@ FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& nam
 }
 
 FluidCheckpoint read_checkpoint(const std::string& path) {
-  // Only a regular file: a device or a pipe (/dev/zero, a FIFO) would be read without end.
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError("--restart '" + path + "': is not a readable regular file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("--restart '" + path + "': cannot be read");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (in.bad()) throw InputError("--restart '" + path + "': cannot be read");
-  return decode_checkpoint(bytes.str(), path);
+  return decode_checkpoint(checkpoint::read_regular_file(path), path);
 }
 
 }  // namespace hpcplan::sph

@@ -77,4 +77,71 @@ SurgeFront dam_break_front(const FluidState& s, double density_fraction) {
   return {t, x / a};
 }
 
+double water_height(const FluidState& s, double x, double y, double density_fraction) {
+  const Particles& p = s.particles;
+  const FluidParams& f = s.params;
+  const WendlandC2Kernel kernel(f.smoothing_length);
+  const double reach = kernel.support, floor = s.domain.lo[2];
+  // The fluid particles whose kernel reaches the line.
+  std::vector<std::size_t> near;
+  double top = floor;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.wall[i]) continue;
+    const double dx = x - p.x[i], dy = y - p.y[i];
+    if (dx * dx + dy * dy < reach * reach) {
+      near.push_back(i);
+      top = std::max(top, p.z[i] + reach);
+    }
+  }
+  auto density_at = [&](double z) {
+    double rho = 0.0;
+    for (const std::size_t j : near) {
+      const double dx = x - p.x[j], dy = y - p.y[j];
+      for (const double zj : {p.z[j], 2.0 * floor - p.z[j]}) {
+        const double dz = z - zj;
+        rho += f.particle_mass * kernel.w(std::sqrt(dx * dx + dy * dy + dz * dz));
+      }
+    }
+    return rho;
+  };
+  const double threshold = density_fraction * f.rest_density, step = f.particle_spacing / 8.0;
+  double z = top, above = density_at(z);
+  while (above < threshold && z > floor) {
+    const double below = above;  // (the sample above this one)
+    z = std::max(floor, z - step);
+    above = density_at(z);
+    if (above >= threshold) {  // crossed between z and the sample above
+      const double frac = (threshold - above) / (below - above);
+      return z - floor + frac * step;
+    }
+  }
+  return above >= threshold ? top - floor : 0.0;
+}
+
+Probes probes_for(Scenario scenario) {
+  Probes p;
+  p.scenario = scenario;
+  if (scenario == Scenario::dambreak) p.columns = {"T", "Z"};
+  if (scenario == Scenario::marin) {
+    p.columns = {"t"};
+    for (const Gauge& g : kMarinGauges) p.columns.emplace_back(g.name);
+    p.interval = 0.005;  // the experiment's record is every 1 ms; its features last 0.05 s+
+  }
+  return p;
+}
+
+void record_probes(const FluidState& s, Probes& probes) {
+  if (probes.columns.empty()) return;
+  if (probes.scenario == Scenario::dambreak) {
+    const SurgeFront f = dam_break_front(s);
+    probes.rows.push_back({f.t, f.z});
+    return;
+  }
+  if (s.time < static_cast<double>(probes.rows.size()) * probes.interval) return;
+  std::vector<double> row{s.time};
+  const double y = 0.5 * (s.domain.lo[1] + s.domain.hi[1]);
+  for (const Gauge& g : kMarinGauges) row.push_back(water_height(s, g.x, y));
+  probes.rows.push_back(std::move(row));
+}
+
 }  // namespace hpcplan::sph

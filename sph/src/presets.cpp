@@ -1,6 +1,7 @@
 #include "hpcplan/sph/presets.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -102,7 +103,15 @@ struct WaterLayout {
   double dx = 0.0;
   Box3 domain;                  // where the fluid may go
   Vec3 fluid_lo{}, fluid_hi{};  // the fluid block (on the lattice from the domain's corner)
+  // A solid obstacle standing on the floor, in lattice cells [lo, hi) (none when lo == hi): its
+  // cells are filled with wall particles.
+  std::array<int, 3> solid_lo{}, solid_hi{};
 };
+
+// SPHERIC Test 2 (Kleefsman et al. 2005): every length snapped to the nearest lattice plane.
+int cells(double length, double dx) {
+  return static_cast<int>(std::lround(length / dx));
+}
 
 WaterLayout water_layout(const FluidOptions& o) {
   WaterLayout w;
@@ -124,6 +133,23 @@ WaterLayout water_layout(const FluidOptions& o) {
     w.fluid_lo = {1.5, 0.0, 0.0};
     w.fluid_hi = {2.5, 1.0, 2.0};
     w.domain = {{0, 0, 0}, {4.0, 1.0, 3.0}};
+  } else if (o.scenario == Scenario::marin) {
+    // The water column is 1.228 x 1 x 0.55 m: nx ny nz = (1.228 / 0.55) (1 / 0.55) nz^3. The
+    // height is exact (dx = 0.55 / nz); every other plane lies on the lattice nearest to it.
+    const double shape = (kMarinColumn[0] / kMarinColumn[2]) * (kMarinColumn[1] / kMarinColumn[2]);
+    w.nz = std::max(3, static_cast<int>(std::lround(std::cbrt(n / shape))));
+    w.dx = kMarinColumn[2] / w.nz;
+    const int cx = cells(kMarinTank[0], w.dx), cy = cells(kMarinTank[1], w.dx);
+    const int front = cells(kMarinTank[0] - kMarinColumn[0], w.dx);
+    w.nx = cx - front;
+    w.ny = cy;
+    w.fluid_lo = {front * w.dx, 0.0, 0.0};
+    w.fluid_hi = {cx * w.dx, cy * w.dx, kMarinColumn[2]};
+    w.domain = {{0, 0, 0}, {cx * w.dx, cy * w.dx, cells(kMarinTank[2], w.dx) * w.dx}};
+    for (int k = 0; k < 3; ++k) {
+      w.solid_lo[k] = cells(kMarinObstacle.lo[k], w.dx);
+      w.solid_hi[k] = std::max(w.solid_lo[k] + 1, cells(kMarinObstacle.hi[k], w.dx));
+    }
   } else {
     // nz = 2 nx, ny = nx / 4: the column a x a/4 x 2a.
     w.nx = std::max(4, static_cast<int>(std::lround(std::cbrt(2.0 * n))));
@@ -179,11 +205,15 @@ FluidState make_water(const FluidOptions& o) {
   const int cx = static_cast<int>(std::lround(size[0] / w.dx));
   const int cy = static_cast<int>(std::lround(size[1] / w.dx));
   const int cz = static_cast<int>(std::lround(size[2] / w.dx));
+  const auto in_solid = [&w](int i, int j, int k) {
+    return i >= w.solid_lo[0] && i < w.solid_hi[0] && j >= w.solid_lo[1] && j < w.solid_hi[1] &&
+           k >= w.solid_lo[2] && k < w.solid_hi[2];
+  };
   for (int k = -kWallLayers; k < cz; ++k)
     for (int j = -kWallLayers; j < cy + kWallLayers; ++j)
       for (int i = -kWallLayers; i < cx + kWallLayers; ++i) {
         const bool inside = i >= 0 && i < cx && j >= 0 && j < cy && k >= 0;
-        if (inside) continue;
+        if (inside && !in_solid(i, j, k)) continue;
         s.particles.add({(i + 0.5) * w.dx, (j + 0.5) * w.dx, (k + 0.5) * w.dx}, {0, 0, 0},
                         f.rest_density, true);
         // The dam break is a slab a/4 wide standing in for Martin and Moyce's plane flow: its
@@ -214,8 +244,9 @@ Scenario parse_scenario(std::string_view name) {
   if (name == "dambreak") return Scenario::dambreak;
   if (name == "tank") return Scenario::tank;
   if (name == "column") return Scenario::column;
+  if (name == "marin") return Scenario::marin;
   throw InputError("unknown --scenario '" + std::string(name) +
-                   "' (expected particles, static, dynamic, dambreak, tank or column)");
+                   "' (expected particles, static, dynamic, dambreak, tank, column or marin)");
 }
 
 std::string_view to_string(Preset p) {
@@ -236,6 +267,8 @@ std::string_view to_string(Scenario s) {
       return "tank";
     case Scenario::column:
       return "column";
+    case Scenario::marin:
+      return "marin";
   }
   return "?";
 }
@@ -244,13 +277,13 @@ void validate(const FluidOptions& o) {
   if (o.particles < 1) throw InputError("--particles must be at least 1");
   if (o.particles > 200'000'000) throw InputError("--particles must be at most 200000000");
   const bool water_scene = o.scenario == Scenario::dambreak || o.scenario == Scenario::tank ||
-                           o.scenario == Scenario::column;
+                           o.scenario == Scenario::column || o.scenario == Scenario::marin;
   if (o.preset == Preset::seed && water_scene)
     throw InputError("the seed preset has no walls to hold water: --scenario " +
                      std::string(to_string(o.scenario)) + " needs --preset water");
   if (o.preset == Preset::water && !water_scene)
     throw InputError(
-        "the water preset runs --scenario tank, dambreak or column (the seed's scenarios "
+        "the water preset runs --scenario tank, dambreak, column or marin (the seed's scenarios "
         "particles, static and dynamic are --preset seed)");
 }
 

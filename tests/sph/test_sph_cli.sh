@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # hpcplan sph end to end: the JSON report, VTK output read back by VTK's own XML readers
-# (Debian's python3-vtk9, as ParaView reads it), the dam break's front CSV, bad input.
+# (Debian's python3-vtk9, as ParaView reads it), the dam break's front CSV, SPHERIC Test 2's
+# gauges, checkpoint and restart, bad input.
 set -uo pipefail
 bin=$1
 # Debian's interpreter, which has python3-vtk9 (a python3 earlier in PATH may not).
@@ -99,6 +100,23 @@ assert rows[-1][1] > 1.05, rows[-1]
 PY
 echo "sph_cli: front ok"
 
+# SPHERIC Test 2's gauges: t,H1..H4 every 5 ms of simulated time to the end (0.1 s); at t = 0 the three gauges
+# downstream are dry and H4 (in the column) reads the column's 0.55 m within the interpolation's
+# resolution (a tenth of a spacing, 0.0917 m here); the column then drains, so H4 falls.
+"$bin" sph --preset water --scenario marin --particles 900 --frames 5 --gauges-csv "$dir/gauges.csv" \
+  > "$dir/marin.txt" || fail "marin failed"
+head -1 "$dir/gauges.csv" | grep -qx "t,H1,H2,H3,H4" || fail "gauges CSV header"
+python3 - "$dir/gauges.csv" <<'PY' || fail "gauges CSV values"
+import csv, sys
+rows = [[float(v) for v in r.values()] for r in csv.DictReader(open(sys.argv[1]))]
+assert rows[0][:4] == [0.0, 0.0, 0.0, 0.0] and abs(rows[0][4] - 0.55) < 0.01, rows[0]
+ts = [r[0] for r in rows]
+# Row k: the first substep at or after k x 5 ms (the substeps here are under 5 ms).
+assert len(rows) == 21 and all(0.005 * k - 1e-9 <= t < 0.005 * (k + 1) for k, t in enumerate(ts)), ts
+assert rows[-1][4] < rows[0][4] - 0.005, (rows[0], rows[-1])
+PY
+echo "sph_cli: gauges ok"
+
 # Checkpoint and restart: a run stopped at frame 20 and restarted to 40 writes the very files
 # the uninterrupted run writes (every VTK frame and the series, byte for byte); the water dam
 # break's front CSV likewise, across a restart in the middle of the surge.
@@ -122,6 +140,13 @@ grep -q '"restarted_at_frame":20' "$dir/ck.json" || fail "checkpoint: the restar
   --front-csv "$dir/front_part.csv" --checkpoint "$dir/water.bin" > /dev/null ||
   fail "checkpoint: water restart failed"
 cmp -s "$dir/front_full.csv" "$dir/front_part.csv" || fail "checkpoint: the front differs after a restart"
+"$bin" sph --preset water --scenario marin --particles 900 --frames 4 \
+  --gauges-csv "$dir/gauges_full.csv" > /dev/null || fail "checkpoint: marin run failed"
+"$bin" sph --preset water --scenario marin --particles 900 --frames 2 \
+  --checkpoint "$dir/marin.bin" > /dev/null || fail "checkpoint: marin first half failed"
+"$bin" sph --restart "$dir/marin.bin" --frames 4 --gauges-csv "$dir/gauges_part.csv" > /dev/null ||
+  fail "checkpoint: marin restart failed"
+cmp -s "$dir/gauges_full.csv" "$dir/gauges_part.csv" || fail "checkpoint: the gauges differ after a restart"
 echo "sph_cli: checkpoint ok"
 
 # Bad input: exit 2, one line on stderr, nothing written.
@@ -144,6 +169,8 @@ bad "over the memory budget" --particles 100000000 --memory-mb 64 --vtk "$dir/ba
 bad "front without a dam break" --front-csv "$dir/f.csv"
 bad "unwritable vtk" --vtk /nonexistent-dir/vtk
 bad "unwritable front" --preset water --front-csv /nonexistent-dir/f.csv
+bad "gauges without marin" --preset water --gauges-csv "$dir/g.csv"
+grep -q "needs --scenario marin" "$dir/err.txt" || fail "gauges without marin: $(cat "$dir/err.txt")"
 bad "negative threads" --threads -1
 bad "unknown backend" --backend gpu
 # Damaged and foreign checkpoints, and a restart that names another problem.

@@ -1,6 +1,6 @@
 #pragma once
 // A fluid run (hpcplan sph) as JSON (the keys documented in README.md) and as a readable
-// summary, and the dam break's surge front as T,Z rows.
+// summary, and a scenario's probe rows (the dam break's front, the MARIN gauges) as CSV.
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -32,7 +32,8 @@ struct SphRun {
 nlohmann::json to_json(const SphRun& run);
 std::string to_summary(const SphRun& run);
 
-// T = t sqrt(2 g / a), Z = x / a, one row per sample.
-std::string front_csv(const std::vector<std::pair<double, double>>& t_z);
+// A scenario's probe rows as CSV (sph::Probes: the dam break's T,Z, the MARIN gauges' t and
+// heights), six decimals.
+std::string probes_csv(const sph::Probes& probes);
 
 }  // namespace hpcplan::io

@@ -10,7 +10,8 @@
 //     runs every few substeps, counted from the start; the agitation depends on the frame);
 //   - every particle field of particle_fields.hpp in the current particle order (the order of
 //     the sums, so the order of round-off), and every box's position and velocity;
-//   - the dam break's front rows so far (so that --front-csv covers the whole run).
+//   - the scenario's probe rows so far (the dam break's front, the MARIN gauges), so that
+//     --front-csv and --gauges-csv cover the whole run.
 // Nothing else carries over a frame boundary: the CPU backend rebuilds its grid and neighbour
 // lists at every frame's first substep (its Verlet lists live within a frame), the CUDA
 // backend sorts by cell every substep.
@@ -18,14 +19,13 @@
 // problem builds now, the time is its frame's end, the ids are a permutation and the walls are
 // the built ones, and the file is large enough for the particles it claims.
 //
-// The file: a magic line, the format and the hpcplan version that wrote it, the payload
-// (little-endian, as the machines hpcplan runs on), and a 64-bit checksum of the payload. A
-// file that is not a checkpoint, is cut short, fails its checksum, comes from another version
-// or describes another problem is an InputError naming the file and what is wrong.
+// The file: core's checkpoint envelope (core/checkpoint_file.hpp: kind, format, version,
+// checksum) around the payload above. A file that is not a fluid checkpoint, is cut short,
+// fails its checksum, comes from another version or describes another problem is an InputError
+// naming the file and what is wrong.
 #include <cstdint>
 #include <string>
 #include <string_view>
-#include <utility>
 #include <vector>
 
 #include "hpcplan/sph/fluid_state.hpp"
@@ -37,13 +37,13 @@ struct FluidCheckpoint {
   FluidOptions options;
   std::uint64_t frame = 0;  // frames completed
   FluidState state;         // as make_fluid(options) builds it, then the saved dynamics
-  std::vector<std::pair<double, double>> front;  // the dam break's (T, Z) rows so far
+  std::vector<std::vector<double>> probe_rows;  // the scenario's Probes::rows so far
 };
 
 // The checkpoint's bytes; `state` must have every array current (Fluid::full_state()).
 std::string encode_checkpoint(const FluidOptions& options, std::uint64_t frame,
                               const FluidState& state,
-                              const std::vector<std::pair<double, double>>& front);
+                              const std::vector<std::vector<double>>& probe_rows);
 
 // The checkpoint in `bytes`, read from `name` (for messages). InputError when damaged,
 // foreign, of another version or of a problem make_fluid does not rebuild to the same counts.

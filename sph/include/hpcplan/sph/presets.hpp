@@ -27,7 +27,13 @@
 //   column: width a = 2.25 in, height 2a, in a tank 6a long, a/4 wide) and column (a dam break
 //   at a robot's scale for the simulator: a column 1 m x 1 m x 2 m standing in the middle of a
 //   tank 4 m long, 1 m wide and 3 m tall, so it collapses both ways; the columns of particles
-//   across the column's width are an even number, nx = 2, 4, ...).
+//   across the column's width are an even number, nx = 2, 4, ...), and marin (SPHERIC Test 2,
+//   MARIN's dam break with an obstacle, Kleefsman et al. 2005: a tank 3.22 x 1 x 1 m, the water
+//   column 1.228 m long and 0.55 m deep against its far end (x >= 1.992), a box 0.161 x 0.403 x
+//   0.161 m standing on the floor at x = 0.6635-0.8245, centred across the tank. The column's
+//   height is exact; the other planes are snapped to the nearest lattice plane (dx = 0.55 / nz,
+//   so within dx / 2). The tank's top is a lid at 1 m: water rising along the end wall stops
+//   there).
 #include <cstdint>
 #include <string_view>
 
@@ -35,7 +41,7 @@
 
 namespace hpcplan::sph {
 
-enum class Scenario { particles, static_boxes, dynamic_boxes, dambreak, tank, column };
+enum class Scenario { particles, static_boxes, dynamic_boxes, dambreak, tank, column, marin };
 
 Preset parse_preset(std::string_view name);      // InputError if unknown
 Scenario parse_scenario(std::string_view name);  // InputError if unknown
@@ -58,5 +64,11 @@ FluidState make_fluid(const FluidOptions& options);
 
 // The dam break's column width a, for Z = x / a and T = t sqrt(2 g / a).
 inline constexpr double kDamBreakColumn = 0.05715;
+
+// SPHERIC Test 2's geometry (metres; x along the tank from the end the water runs to, y across,
+// z up): the tank, the water column (against the tank's far end) and the obstacle.
+inline constexpr Vec3 kMarinTank{3.22, 1.0, 1.0};
+inline constexpr Vec3 kMarinColumn{1.228, 1.0, 0.55};
+inline constexpr Box3 kMarinObstacle{{0.6635, 0.2985, 0.0}, {0.8245, 0.7015, 0.161}};
 
 }  // namespace hpcplan::sph
