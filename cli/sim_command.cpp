@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "hpcplan/core/memory.hpp"
 #include "hpcplan/core/progress.hpp"
 #include "hpcplan/core/stopwatch.hpp"
+#include "hpcplan/io/sim_checkpoint.hpp"
 #include "hpcplan/io/sim_report.hpp"
 #include "hpcplan/io/vtk_fluid.hpp"
 #include "hpcplan/sim/simulator.hpp"
@@ -29,7 +31,7 @@ struct SimArgs {
   std::string scenario = "particles", pace = "lockstep", controller = "seed",
               occupancy = "particles";
   int threads = 0;
-  std::string csv, replan_log, trajectory, output, vtk_dir;
+  std::string csv, replan_log, trajectory, output, vtk_dir, checkpoint, restart;
   std::uint64_t every = 5;
   bool json = false, no_timings = false;
   std::vector<const CLI::Option*> density_options;  // given only with --occupancy density
@@ -67,13 +69,35 @@ int run(SimArgs& a) {
                                      {a.trajectory, "--trajectory"},
                                      {a.output, "--output"}})
     if (!path.empty()) require_writable_destination(path, option);
+  const int threads = a.threads > 0 ? a.threads : omp_get_max_threads();
+  // A restart continues the checkpoint's simulation: the same options (--runs may grow).
+  io::SimCheckpoint done;
+  const std::string options = io::sim_checkpoint_options(o, threads);
+  if (!a.restart.empty()) {
+    done = io::read_sim_checkpoint(a.restart);
+    if (done.options != options)
+      throw InputError("--restart '" + a.restart +
+                       "' continues a simulation with other options (give it the same options "
+                       "and --threads; only --runs may differ)");
+    if (done.result.runs.size() > static_cast<std::size_t>(o.runs))
+      throw InputError("--restart '" + a.restart + "' holds " +
+                       std::to_string(done.result.runs.size()) + " runs, past --runs " +
+                       std::to_string(o.runs));
+  }
+  if (!a.checkpoint.empty()) {
+    require_writable_destination(a.checkpoint, "--checkpoint");
+    for (const std::string* other : {&a.csv, &a.replan_log, &a.trajectory, &a.output})
+      if (!other->empty() && std::filesystem::weakly_canonical(*other) ==
+                                 std::filesystem::weakly_canonical(a.checkpoint))
+        throw InputError("--checkpoint '" + a.checkpoint + "' is also another output's file");
+  }
   if (!a.vtk_dir.empty()) prepare_vtk_dir(a.vtk_dir);
   if (a.threads > 0) omp_set_num_threads(a.threads);
 
   io::SimInvocation inv;
   inv.options = o;
-  inv.threads = a.threads > 0 ? a.threads : omp_get_max_threads();
-  std::vector<io::TrajectoryRow> trajectory;
+  inv.threads = threads;
+  std::vector<io::TrajectoryRow> trajectory = std::move(done.trajectory);
   // VTK: one series per run (DIR/run_<n>/fluid.pvd), every K-th frame and the last.
   std::unique_ptr<io::VtkSeries> vtk;
   int vtk_run = 0;
@@ -94,13 +118,16 @@ int run(SimArgs& a) {
   const Stopwatch clock;
   inv.result = sim::run_simulation(
       o,
-      [&](const sim::RunRecord& r) {
+      [&](const sim::RunRecord& r, const sim::SimResult& so_far) {
         if (o.runs > 1)
           std::fprintf(stderr, "run %d/%d: %s after %.1f s simulated (%.1f s wall)\n", r.run_number,
                        o.runs, std::string(sim::to_string(r.end)).c_str(), r.sim_time_s,
                        r.wall_time_s);
+        if (!a.checkpoint.empty())
+          write_file_atomically(a.checkpoint,
+                                io::encode_sim_checkpoint({options, so_far, trajectory}));
       },
-      on_frame);
+      on_frame, std::move(done.result));
   inv.seconds = clock.seconds();
 
   const bool timings = !a.no_timings;
@@ -217,6 +244,15 @@ Action register_sim_command(CLI::App& app) {
       "Leave timing columns empty in the CSVs (lockstep runs then compare byte for byte)");
   cmd->add_flag("--json", a.json, "Print the result as one JSON object");
   cmd->add_option("--output", a.output, "Also write the JSON result to this file (atomically)");
+  cmd->add_option("--checkpoint", a.checkpoint,
+                  "After every run, write the runs so far to this file (atomically)");
+  cmd->add_option("--restart", a.restart,
+                  "Keep the runs saved in this checkpoint and make the rest (same options)");
+  // An empty path (an unset shell variable) is refused, not taken as "no checkpoint".
+  for (const char* name : {"--checkpoint", "--restart"})
+    cmd->get_option(name)->check([](const std::string& v) {
+      return v.empty() ? std::string("an empty path") : std::string();
+    });
   return [args](const Context& context) {
     if (context.comm && context.comm->size() > 1)
       throw InputError(

@@ -297,17 +297,21 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
 
 }  // namespace
 
-SimResult run_simulation(const SimOptions& options,
-                         const std::function<void(const RunRecord&)>& on_run,
-                         const std::function<void(const FrameView&)>& on_frame) {
+SimResult run_simulation(
+    const SimOptions& options,
+    const std::function<void(const RunRecord&, const SimResult& so_far)>& on_run,
+    const std::function<void(const FrameView&)>& on_frame, SimResult done) {
   validate(options);
-  SimResult result;
-  for (int run = 1; run <= options.runs; ++run) {
+  if (done.runs.size() > static_cast<std::size_t>(options.runs))
+    throw InputError("the runs already made (" + std::to_string(done.runs.size()) +
+                     ") are more than --runs " + std::to_string(options.runs));
+  SimResult result = std::move(done);
+  for (int run = static_cast<int>(result.runs.size()) + 1; run <= options.runs; ++run) {
     RunRecord rec;
     run_one(options, run, rec, result.replans, on_frame);
     summarise_replans(rec, result.replans);
     result.runs.push_back(rec);
-    if (on_run) on_run(rec);
+    if (on_run) on_run(rec, result);
   }
   return result;
 }

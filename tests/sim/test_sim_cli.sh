@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # hpcplan sim end to end: the JSON summary, the per-run CSV (seed 000's 14 columns first), the
 # per-replan log, byte-identical lockstep runs, VTK with the robot read back by VTK's readers,
-# a realtime run, bad input (one line, exit 2, nothing written).
+# a realtime run, restart from a checkpoint, bad input (one line, exit 2, nothing written).
 set -uo pipefail
 bin=$1
 py=/usr/bin/python3
@@ -10,8 +10,8 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 fail() { echo "sim_cli: FAIL: $*" >&2; exit 1; }
 
-common=(--particles 1000 --scenario dynamic --runs 2 --seed 3 --threads 2 --settle-frames 40
-        --max-sim-s 12)
+common1=(--particles 1000 --scenario dynamic --seed 3 --threads 2 --settle-frames 40 --max-sim-s 12)
+common=("${common1[@]}" --runs 2)
 for k in 1 2; do
   "$bin" sim "${common[@]}" --algo rrtstar --csv "$dir/runs$k.csv" --replan-log "$dir/replans$k.csv" \
     --trajectory "$dir/traj$k.csv" --no-timings --json --output "$dir/out$k.json" > "$dir/stdout$k.json" ||
@@ -186,6 +186,31 @@ assert any(int(r["waypoints"]) > 2 for r in seed if r["status"] == "solved"), se
 print("sim_cli: density occupancy ok")
 PY
 
+# Restart: run 1 made and checkpointed by one invocation, run 2 by another restarted from its
+# checkpoint; together they write the uninterrupted invocation's CSVs byte for byte (lockstep,
+# --no-timings) and its JSON figures.
+"$bin" sim "${common1[@]}" --runs 1 --algo rrtstar --trajectory "$dir/traj_a.csv" \
+  --checkpoint "$dir/sim.ck" > /dev/null 2>&1 || fail "restart: the first part failed"
+"$bin" sim "${common[@]}" --algo rrtstar --restart "$dir/sim.ck" --checkpoint "$dir/sim.ck" \
+  --csv "$dir/runs_r.csv" --replan-log "$dir/replans_r.csv" --trajectory "$dir/traj_r.csv" \
+  --no-timings --json > "$dir/restart.json" 2> /dev/null || fail "restart: the restart failed"
+for f in runs replans traj; do
+  cmp -s "$dir/${f}1.csv" "$dir/${f}_r.csv" || fail "restart: $f.csv differs from the uninterrupted run's"
+done
+python3 - "$dir/out1.json" "$dir/restart.json" <<'PY' || fail "restart: JSON figures differ"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:])
+timed = {"wall_time_s", "plan_time_us", "sph_ms_per_frame", "snapshot_ms", "seconds"}
+def strip(x):
+    if isinstance(x, dict):
+        return {k: strip(v) for k, v in x.items() if k not in timed and not k.startswith(("plan_time_us", "sph_ms"))}
+    if isinstance(x, list):
+        return [strip(v) for v in x]
+    return x
+assert strip(a) == strip(b), (strip(a), strip(b))
+PY
+echo "sim_cli: restart ok"
+
 # Bad input: one line on stderr, exit 2, no file written.
 bad() {
   local expect=$1; shift
@@ -200,10 +225,6 @@ bad() {
 bad "particles" --particles 1
 bad "scenario" --scenario tank
 bad "scenario" --scenario nosuch
-bad "backend" --backend gpu
-if ! "$bin" sim --backend cuda --particles 300 --max-sim-s 0.1 --settle-frames 0 > /dev/null 2>&1; then
-  bad "backend cuda" --backend cuda
-fi
 bad "backend" --backend gpu
 if ! "$bin" sim --backend cuda --particles 300 --max-sim-s 0.1 --settle-frames 0 > /dev/null 2>&1; then
   bad "backend cuda" --backend cuda
@@ -224,6 +245,18 @@ bad "max-wall-s" --max-wall-s -1
 bad "goal-bias" --goal-bias 2
 bad "memory" --particles 100000000 --memory-mb 16
 bad "vtk" --vtk "$dir/bad.csv/x"
+bad "other options" "${common[@]}" --algo rrtstar --replan-every 5 --restart "$dir/sim.ck"
+bad "past --runs 1" "${common1[@]}" --runs 1 --algo rrtstar --restart "$dir/sim.ck"
+head -c 100 "$dir/sim.ck" > "$dir/sim_cut.ck"
+bad "cut short" "${common[@]}" --algo rrtstar --restart "$dir/sim_cut.ck"
+cp "$dir/sim.ck" "$dir/sim_flip.ck"
+printf '\x7f' | dd of="$dir/sim_flip.ck" bs=1 seek=300 conv=notrunc 2> /dev/null
+bad "checksum" "${common[@]}" --algo rrtstar --restart "$dir/sim_flip.ck"
+printf 'hpcplan fluid checkpoint\n' > "$dir/fluid.ck"
+bad "not an hpcplan simulator checkpoint" --restart "$dir/fluid.ck"
+bad "not a readable regular file" --restart /dev/zero
+bad "an empty path" --checkpoint ""
+bad "also another output" --checkpoint "$dir/bad.csv"
 rm -f "$dir/bad.csv"
 "$bin" sim --particles 500 --replan-log /nonexistent/dir/log.csv > /dev/null 2> "$dir/err"
 [[ $? -eq 2 ]] || fail "unwritable --replan-log is not exit 2"

@@ -106,9 +106,12 @@ int settle_frames(const SimOptions& options);  // the options' or the scenario's
 void validate(const SimOptions& options);
 
 // Runs options.runs runs (run numbers 1..runs, each seeded from (seed, run number)).
-// `on_run` sees each run's record as it ends (progress); `on_frame` every frame.
-SimResult run_simulation(const SimOptions& options,
-                         const std::function<void(const RunRecord&)>& on_run = {},
-                         const std::function<void(const FrameView&)>& on_frame = {});
+// `on_run` sees each run's record as it ends, with every record so far (progress, checkpoints);
+// `on_frame` every frame. `done`: the runs already made (a restart's), which are kept and not
+// run again: the runs are independent, so the result is the uninterrupted one (lockstep pace).
+SimResult run_simulation(
+    const SimOptions& options,
+    const std::function<void(const RunRecord&, const SimResult& so_far)>& on_run = {},
+    const std::function<void(const FrameView&)>& on_frame = {}, SimResult done = {});
 
 }  // namespace hpcplan::sim
