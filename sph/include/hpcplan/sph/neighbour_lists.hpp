@@ -20,11 +20,14 @@ class NeighbourLists {
   explicit NeighbourLists(std::uint32_t capacity = 96) : capacity_(capacity) {}
 
   // Lists the neighbours (itself excluded) of every particle i with wanted(i): every particle
-  // within the grid's support. for_each then reports those within `cutoff` (no more than the
-  // grid's support) of where they are now: with a grid wider than the cutoff by a skin, a list
-  // stays complete while no particle has moved more than half the skin (Verlet lists).
-  template <class Wanted>
-  void build(const NeighbourGrid& grid, const Particles& p, double cutoff, Wanted&& wanted) {
+  // j within the grid's support with keep(i, j) (the pairs some phase reads; a phase must
+  // skip the others itself, as it does when a list overflows to the grid). for_each then
+  // reports those within `cutoff` (no more than the grid's support) of where they are now:
+  // with a grid wider than the cutoff by a skin, a list stays complete while no particle has
+  // moved more than half the skin (Verlet lists).
+  template <class Wanted, class Keep>
+  void build(const NeighbourGrid& grid, const Particles& p, double cutoff, Wanted&& wanted,
+             Keep&& keep) {
     cutoff2_ = cutoff * cutoff;
     const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(p.size());
     count_.resize(p.size());
@@ -37,12 +40,12 @@ class NeighbourLists {
       }
       std::uint32_t* out = items_.data() + static_cast<std::size_t>(i) * capacity_;
       std::uint32_t c = 0;
-      grid.for_each_within(p.x[i], p.y[i], p.z[i], p,
-                           [&](std::uint32_t j, double, double, double, double) {
-                             if (j == static_cast<std::uint32_t>(i)) return;
-                             if (c < capacity_) out[c] = j;
-                             ++c;
-                           });
+      grid.for_each_within(
+          p.x[i], p.y[i], p.z[i], p, [&](std::uint32_t j, double, double, double, double) {
+            if (j == static_cast<std::uint32_t>(i) || !keep(static_cast<std::size_t>(i), j)) return;
+            if (c < capacity_) out[c] = j;
+            ++c;
+          });
       count_[i] = c;
     }
   }
