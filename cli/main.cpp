@@ -80,7 +80,8 @@ int main(int argc, char** argv) {
   } catch (const hpcplan::RunError& e) {
     return fail(hpcplan::kExitRunFailure, e.what());
   } catch (const std::bad_alloc&) {
-    return fail(hpcplan::kExitRunFailure, "out of memory; lower --max-states or the problem size");
+    return fail(hpcplan::kExitRunFailure,
+                "out of memory; lower the problem size (--max-states, --particles, --memory-mb)");
   } catch (const std::exception& e) {
     return fail(hpcplan::kExitRunFailure, e.what());
   }

@@ -72,13 +72,13 @@ int run(SimArgs& a) {
   const int threads = a.threads > 0 ? a.threads : omp_get_max_threads();
   // A restart continues the checkpoint's simulation: the same options (--runs may grow).
   io::SimCheckpoint done;
-  const std::string options = io::sim_checkpoint_options(o, threads);
+  const std::string options = io::sim_checkpoint_options(o, !a.trajectory.empty());
   if (!a.restart.empty()) {
     done = io::read_sim_checkpoint(a.restart);
     if (done.options != options)
       throw InputError("--restart '" + a.restart +
-                       "' continues a simulation with other options (give it the same options "
-                       "and --threads; only --runs may differ)");
+                       "' continues a simulation with other options (give it the same options, "
+                       "--trajectory or not as before; only --runs and --threads may differ)");
     if (done.result.runs.size() > static_cast<std::size_t>(o.runs))
       throw InputError("--restart '" + a.restart + "' holds " +
                        std::to_string(done.result.runs.size()) + " runs, past --runs " +
@@ -129,6 +129,10 @@ int run(SimArgs& a) {
       },
       on_frame, std::move(done.result));
   inv.seconds = clock.seconds();
+  // (Also when a restart had no run left to make: the new checkpoint still names every run.)
+  if (!a.checkpoint.empty())
+    write_file_atomically(a.checkpoint,
+                          io::encode_sim_checkpoint({options, inv.result, trajectory}));
 
   const bool timings = !a.no_timings;
   if (!a.csv.empty())

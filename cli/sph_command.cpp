@@ -78,14 +78,19 @@ int run(const SphArgs& a) {
                        std::to_string(restart->frame) + ", past --frames " +
                        std::to_string(a.frames));
   }
-  if (!a.checkpoint.empty()) {
-    require_writable_destination(a.checkpoint, "--checkpoint");
-    // One file, one content: the checkpoint would overwrite another output or vice versa.
-    for (const std::string* other : {&a.output, &a.front_csv, &a.gauges_csv})
-      if (!other->empty() && std::filesystem::weakly_canonical(*other) ==
-                                 std::filesystem::weakly_canonical(a.checkpoint))
-        throw InputError("--checkpoint '" + a.checkpoint + "' is also another output's file");
-  }
+  if (!a.checkpoint.empty()) require_writable_destination(a.checkpoint, "--checkpoint");
+  // One file, one content: no output may overwrite another.
+  const std::pair<const std::string*, const char*> outputs[] = {{&a.checkpoint, "--checkpoint"},
+                                                                {&a.output, "--output"},
+                                                                {&a.front_csv, "--front-csv"},
+                                                                {&a.gauges_csv, "--gauges-csv"}};
+  for (std::size_t i = 0; i < std::size(outputs); ++i)
+    for (std::size_t j = i + 1; j < std::size(outputs); ++j)
+      if (!outputs[i].first->empty() && !outputs[j].first->empty() &&
+          std::filesystem::weakly_canonical(*outputs[i].first) ==
+              std::filesystem::weakly_canonical(*outputs[j].first))
+        throw InputError(std::string(outputs[i].second) + " '" + *outputs[i].first +
+                         "' is also another output's file (" + outputs[j].second + ")");
   sph::check_backend_name(a.backend);
   // The memory budget: an explicit one, else half of what the machine has available.
   const std::uint64_t need = sph::estimated_bytes(o);
@@ -208,14 +213,14 @@ Action register_sph_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--restart", a.restart,
                   "Continue the run saved in this checkpoint, bit for bit, up to --frames");
-  // An empty path (an unset shell variable) is refused, not taken as "no checkpoint".
-  for (const char* name : {"--checkpoint", "--restart"})
-    cmd->get_option(name)->check([](const std::string& v) {
-      return v.empty() ? std::string("an empty path") : std::string();
-    });
   for (const char* name : {"--preset", "--scenario", "--particles", "--seed"})
     a.problem_options.push_back(cmd->get_option(name));
   cmd->add_option("--output", a.output, "Also write the JSON result to this file (atomically)");
+  // An empty path (an unset shell variable) is refused, not taken as "none".
+  for (const char* name : {"--checkpoint", "--restart", "--front-csv", "--gauges-csv", "--output"})
+    cmd->get_option(name)->check([](const std::string& v) {
+      return v.empty() ? std::string("an empty path") : std::string();
+    });
   return [args](const Context& context) {
     if (context.comm && context.comm->size() > 1)
       throw InputError("hpcplan sph runs in one process (OpenMP threads); start it without mpirun");

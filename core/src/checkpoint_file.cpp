@@ -1,5 +1,6 @@
 #include "hpcplan/core/checkpoint_file.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -62,6 +63,8 @@ std::string_view open(std::string_view bytes, std::string_view magic, std::uint3
     r.fail("has checkpoint format " + std::to_string(found) + "; this hpcplan reads format " +
            std::to_string(format));
   const std::string written_by = r.get_string();
+  for (const char c : written_by)
+    if (c < ' ' || c > '~') r.fail("has a damaged header");
   if (written_by != version())
     r.fail("was written by hpcplan " + written_by + "; this is hpcplan " + std::string(version()));
   const auto size = r.get<std::uint64_t>();
@@ -75,16 +78,24 @@ std::string_view open(std::string_view bytes, std::string_view magic, std::uint3
   return payload;
 }
 
-std::string read_regular_file(const std::string& path) {
+std::string read_regular_file(const std::string& path, std::string_view magic,
+                              std::string_view kind) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError("--restart '" + path + "': is not a readable regular file");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("--restart '" + path + "': cannot be read");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (in.bad()) throw InputError("--restart '" + path + "': cannot be read");
-  return std::move(bytes).str();
+  if (ec || !in) throw InputError("--restart '" + path + "': cannot be read");
+  // The magic line first: another file, however large, is refused without reading it.
+  std::string bytes(std::min<std::uintmax_t>(size, magic.size()), '\0');
+  in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!in || bytes != magic)
+    throw InputError("--restart '" + path + "': is not " + std::string(kind));
+  bytes.resize(size);  // (std::bad_alloc for a file larger than memory: a run failure)
+  in.read(bytes.data() + magic.size(), static_cast<std::streamsize>(size - magic.size()));
+  if (in.gcount() != static_cast<std::streamsize>(size - magic.size()))
+    throw InputError("--restart '" + path + "': cannot be read");
+  return bytes;
 }
 
 }  // namespace hpcplan::checkpoint

@@ -4,6 +4,7 @@
 
 #include "hpcplan/core/checkpoint_file.hpp"
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/core/status.hpp"
 
 // The records' fields, each named once for both directions (enums as their numbers). A field
 // added to a record and not here is lost across a restart: tests/sim/test_sim_cli.sh compares
@@ -26,7 +27,36 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(
 static_assert(sizeof(ReplanRecord) == 136 && sizeof(RunRecord) == 448,
               "a record's fields changed: name them in NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE above");
 #endif
+// The options that decide a run's result (SimOptions but --runs and the test hooks).
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RobotParams, steer_force, max_speed, waypoint_radius)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SafetyParams, robot_radius, particle_radius)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ReactiveParams, horizon_s, margin)
+#if defined(__x86_64__) && defined(__GLIBCXX__)
+static_assert(sizeof(SimOptions) == 416 && sizeof(RobotParams) == 24 &&
+                  sizeof(SafetyParams) == 16 && sizeof(ReactiveParams) == 16,
+              "the simulator's options changed: name the new ones in the checkpoint's key");
+#endif
 }  // namespace hpcplan::sim
+
+namespace hpcplan::env {
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(OccupancyConfig, cell, particle_radius, box_inflation, rule,
+                                   density_support, density_threshold)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ParticleWorldConfig, radius)
+#if defined(__x86_64__) && defined(__GLIBCXX__)
+static_assert(sizeof(OccupancyConfig) == 48 && sizeof(ParticleWorldConfig) == 8,
+              "the worlds' options changed: name the new ones in the checkpoint's key");
+#endif
+}  // namespace hpcplan::env
+
+namespace hpcplan::plan {
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FluidPlanOptions, algo, world, occupancy, particles, seed,
+                                   escape_cells, iterations, step, goal_bias, rewire_radius,
+                                   goal_radius, time_s)
+#if defined(__x86_64__) && defined(__GLIBCXX__)
+static_assert(sizeof(FluidPlanOptions) == 184,
+              "the planner's options changed: name the new ones in the checkpoint's key");
+#endif
+}  // namespace hpcplan::plan
 
 namespace hpcplan::io {
 
@@ -40,14 +70,52 @@ namespace {
 constexpr std::string_view kMagic = "hpcplan simulator checkpoint\n";
 constexpr std::uint32_t kFormat = 1;
 
+// nlohmann's document builder, refusing nesting deeper than the checkpoint's own (records in
+// arrays in the top object, positions in those: 3) as it reads.
+class BoundedDepthParser : public nlohmann::detail::json_sax_dom_parser<nlohmann::json> {
+ public:
+  using Base = nlohmann::detail::json_sax_dom_parser<nlohmann::json>;
+  explicit BoundedDepthParser(nlohmann::json& j) : Base(j, false) {}
+  bool start_object(std::size_t n) { return enter() && Base::start_object(n); }
+  bool end_object() { return leave() && Base::end_object(); }
+  bool start_array(std::size_t n) { return enter() && Base::start_array(n); }
+  bool end_array() { return leave() && Base::end_array(); }
+  bool too_deep() const { return too_deep_; }
+
+ private:
+  static constexpr int kMaxDepth = 8;
+  bool enter() {
+    too_deep_ = too_deep_ || ++depth_ > kMaxDepth;
+    return !too_deep_;
+  }
+  bool leave() {
+    --depth_;
+    return true;
+  }
+  int depth_ = 0;
+  bool too_deep_ = false;
+};
+
 }  // namespace
 
-std::string sim_checkpoint_options(const sim::SimOptions& options, int threads) {
-  SimInvocation inv;
-  inv.options = options;
-  inv.threads = threads;
-  nlohmann::json j = to_json(inv);
-  for (const char* key : {"runs_requested", "seconds", "runs", "aggregate"}) j.erase(key);
+std::string sim_checkpoint_options(const sim::SimOptions& o, bool trajectory) {
+  const nlohmann::json j = {{"scenario", o.scenario},
+                            {"particles", o.particles},
+                            {"planner", o.planner},
+                            {"seed", o.seed},
+                            {"pace", o.pace},
+                            {"replan_every", o.replan_every},
+                            {"lockstep_delay", o.lockstep_delay},
+                            {"settle_frames", o.settle_frames},
+                            {"max_sim_s", o.max_sim_s},
+                            {"max_wall_s", o.max_wall_s},
+                            {"goal_radius", o.goal_radius},
+                            {"robot", o.robot},
+                            {"safety", o.safety},
+                            {"controller", o.controller},
+                            {"reactive", o.reactive},
+                            {"backend", o.backend},
+                            {"trajectory", trajectory}};
   return j.dump();
 }
 
@@ -64,25 +132,46 @@ std::string encode_sim_checkpoint(const SimCheckpoint& c) {
 SimCheckpoint decode_sim_checkpoint(std::string_view bytes, const std::string& name) {
   const std::string_view payload =
       checkpoint::open(bytes, kMagic, kFormat, "an hpcplan simulator checkpoint", name);
+  auto damaged = [&](const std::string& what) {
+    throw InputError("--restart '" + name + "': " + what + " (damaged)");
+  };
   SimCheckpoint c;
   try {
-    const nlohmann::json j = nlohmann::json::from_cbor(payload);
+    // The records nest three deep; a deeper document is refused while it is read (the CBOR
+    // reader recurses, so a crafted nesting would otherwise exhaust the stack).
+    nlohmann::json j;
+    BoundedDepthParser sax(j);
+    if (!nlohmann::json::sax_parse(payload.begin(), payload.end(), &sax,
+                                   nlohmann::json::input_format_t::cbor) ||
+        sax.too_deep())
+      damaged("holds a payload this hpcplan cannot read");
     c.options = j.at("options").get<std::string>();
     c.result.runs = j.at("runs").get<std::vector<sim::RunRecord>>();
     c.result.replans = j.at("replans").get<std::vector<sim::ReplanRecord>>();
     c.trajectory = j.at("trajectory").get<std::vector<TrajectoryRow>>();
   } catch (const nlohmann::json::exception&) {
     // (A sound checksum over a payload hpcplan cannot read: written by hand, or a bug.)
-    throw InputError("--restart '" + name + "': holds a payload this hpcplan cannot read");
+    damaged("holds a payload this hpcplan cannot read");
   }
-  for (std::size_t k = 0; k < c.result.runs.size(); ++k)
-    if (c.result.runs[k].run_number != static_cast<int>(k + 1))
-      throw InputError("--restart '" + name + "': holds runs out of order (damaged)");
+  const auto runs = static_cast<int>(c.result.runs.size());
+  for (int k = 0; k < runs; ++k) {
+    const sim::RunRecord& r = c.result.runs[static_cast<std::size_t>(k)];
+    if (r.run_number != k + 1) damaged("holds runs out of order");
+    if (sim::to_string(r.end) == "unknown") damaged("holds a run that ended in no known way");
+  }
+  for (const sim::ReplanRecord& r : c.result.replans)
+    if (r.run < 1 || r.run > runs || to_string(r.status) == "unknown" ||
+        static_cast<unsigned>(r.blocked) > static_cast<unsigned>(plan::BlockedEnd::goal) ||
+        static_cast<unsigned>(r.incremental) > static_cast<unsigned>(plan::Incremental::repair))
+      damaged("holds a replan record of no saved run, or of an unknown kind");
+  for (const TrajectoryRow& r : c.trajectory)
+    if (r.run < 1 || r.run > runs) damaged("holds trajectory rows of no saved run");
   return c;
 }
 
 SimCheckpoint read_sim_checkpoint(const std::string& path) {
-  return decode_sim_checkpoint(checkpoint::read_regular_file(path), path);
+  return decode_sim_checkpoint(
+      checkpoint::read_regular_file(path, kMagic, "an hpcplan simulator checkpoint"), path);
 }
 
 }  // namespace hpcplan::io

@@ -109,7 +109,7 @@ std::string probes_csv(const sph::Probes& probes) {
   std::string s;
   for (std::size_t k = 0; k < probes.columns.size(); ++k) s += (k ? "," : "") + probes.columns[k];
   s += "\n";
-  char buf[32];
+  char buf[352];  // "%.6f" of any finite double fits
   for (const std::vector<double>& row : probes.rows) {
     for (std::size_t k = 0; k < row.size(); ++k) {
       std::snprintf(buf, sizeof buf, "%s%.6f", k ? "," : "", row[k]);

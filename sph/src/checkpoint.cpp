@@ -131,19 +131,29 @@ FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& nam
 #define HPCPLAN_SPH_LOAD_FIELD(type, name) p.get_array(s.particles.name, n);
   HPCPLAN_SPH_PARTICLE_FIELDS(HPCPLAN_SPH_LOAD_FIELD)
 #undef HPCPLAN_SPH_LOAD_FIELD
-  const auto rows = p.get<std::uint64_t>();
-  const auto columns = p.get<std::uint64_t>();
-  const std::size_t expected = probes_for(c.options.scenario).columns.size();
-  if (rows > 0 && (expected == 0 || columns != expected || rows > p.left() / (columns * 8)))
-    p.fail("holds probe rows that do not fit its scenario (damaged)");
-  c.probe_rows.assign(rows, std::vector<double>(columns));
-  for (std::vector<double>& row : c.probe_rows)
-    for (double& v : row) v = p.get<double>();
-  if (p.left() != 0) p.fail("has bytes after its end (damaged)");
   // A frame ends at a multiple of frame_dt (Fluid::advance_frame).
   const double end = static_cast<double>(c.frame) * s.params.frame_dt;
   if (c.frame > 100'000'000 || !(std::abs(s.time - end) <= 1e-9 * (1.0 + end)))
     p.fail("holds a time that is not its frame's end (damaged)");
+  // The probe rows: as many as the run has read (the dam break every substep and at the start;
+  // the gauges every interval of simulated time), each of the scenario's width, all finite.
+  const auto rows = p.get<std::uint64_t>();
+  const auto columns = p.get<std::uint64_t>();
+  const Probes kind = probes_for(c.options.scenario);
+  const std::uint64_t width = kind.columns.size();
+  std::uint64_t expected = 0;
+  if (kind.scenario == Scenario::dambreak) expected = s.substeps + 1;
+  if (kind.scenario == Scenario::marin)
+    expected = static_cast<std::uint64_t>(std::floor(s.time / kind.interval + 1e-9)) + 1;
+  if ((width == 0 && rows > 0) || columns != (rows > 0 ? width : 0) || rows + 1 < expected ||
+      rows > expected + 1 || (rows > 0 && rows > p.left() / 8 / columns))
+    p.fail("holds probe rows that do not fit its scenario and time (damaged)");
+  c.probe_rows.assign(rows, std::vector<double>(columns));
+  for (std::vector<double>& row : c.probe_rows)
+    for (double& v : row)
+      if (v = p.get<double>(); !std::isfinite(v))
+        p.fail("holds a probe reading that is not finite (damaged)");
+  if (p.left() != 0) p.fail("has bytes after its end (damaged)");
   for (const MovingBox& b : s.boxes)
     for (int k = 0; k < 3; ++k)
       if (!(b.box.lo[k] >= s.domain.lo[k] && b.box.hi[k] <= s.domain.hi[k] &&
@@ -165,7 +175,8 @@ FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& nam
 }
 
 FluidCheckpoint read_checkpoint(const std::string& path) {
-  return decode_checkpoint(checkpoint::read_regular_file(path), path);
+  return decode_checkpoint(
+      checkpoint::read_regular_file(path, kMagic, "an hpcplan fluid checkpoint"), path);
 }
 
 }  // namespace hpcplan::sph

@@ -107,12 +107,12 @@ double water_height(const FluidState& s, double x, double y, double density_frac
   const double threshold = density_fraction * f.rest_density, step = f.particle_spacing / 8.0;
   double z = top, above = density_at(z);
   while (above < threshold && z > floor) {
-    const double below = above;  // (the sample above this one)
+    const double upper = above, z_upper = z;  // the sample above the next one
     z = std::max(floor, z - step);
     above = density_at(z);
-    if (above >= threshold) {  // crossed between z and the sample above
-      const double frac = (threshold - above) / (below - above);
-      return z - floor + frac * step;
+    if (above >= threshold) {  // crossed between z and z_upper (less than a step at the floor)
+      const double frac = (threshold - above) / (upper - above);
+      return z - floor + frac * (z_upper - z);
     }
   }
   return above >= threshold ? top - floor : 0.0;

@@ -281,6 +281,12 @@ void validate(const FluidOptions& o) {
   if (o.preset == Preset::seed && water_scene)
     throw InputError("the seed preset has no walls to hold water: --scenario " +
                      std::string(to_string(o.scenario)) + " needs --preset water");
+  // Six particles over the column's height (4.06 x 6^3 rounds to nz = 6 from 676): fewer make
+  // the obstacle one particle thick, and the fluid on its two faces would interact through it.
+  if (o.scenario == Scenario::marin && o.particles < 676)
+    throw InputError(
+        "--scenario marin needs --particles 676 or more (6 particles over the column's height; "
+        "fewer leave the obstacle one particle thick)");
   if (o.preset == Preset::water && !water_scene)
     throw InputError(
         "the water preset runs --scenario tank, dambreak, column or marin (the seed's scenarios "

@@ -10,7 +10,8 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 fail() { echo "sim_cli: FAIL: $*" >&2; exit 1; }
 
-common1=(--particles 1000 --scenario dynamic --seed 3 --threads 2 --settle-frames 40 --max-sim-s 12)
+base=(--particles 1000 --scenario dynamic --seed 3 --settle-frames 40 --max-sim-s 12)
+common1=("${base[@]}" --threads 2)
 common=("${common1[@]}" --runs 2)
 for k in 1 2; do
   "$bin" sim "${common[@]}" --algo rrtstar --csv "$dir/runs$k.csv" --replan-log "$dir/replans$k.csv" \
@@ -191,7 +192,8 @@ PY
 # --no-timings) and its JSON figures.
 "$bin" sim "${common1[@]}" --runs 1 --algo rrtstar --trajectory "$dir/traj_a.csv" \
   --checkpoint "$dir/sim.ck" > /dev/null 2>&1 || fail "restart: the first part failed"
-"$bin" sim "${common[@]}" --algo rrtstar --restart "$dir/sim.ck" --checkpoint "$dir/sim.ck" \
+# (The restart runs on one thread: no result depends on the thread count.)
+"$bin" sim "${base[@]}" --runs 2 --algo rrtstar --threads 1 --restart "$dir/sim.ck" --checkpoint "$dir/sim.ck" \
   --csv "$dir/runs_r.csv" --replan-log "$dir/replans_r.csv" --trajectory "$dir/traj_r.csv" \
   --no-timings --json > "$dir/restart.json" 2> /dev/null || fail "restart: the restart failed"
 for f in runs replans traj; do
@@ -200,7 +202,7 @@ done
 python3 - "$dir/out1.json" "$dir/restart.json" <<'PY' || fail "restart: JSON figures differ"
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:])
-timed = {"wall_time_s", "plan_time_us", "sph_ms_per_frame", "snapshot_ms", "seconds"}
+timed = {"wall_time_s", "plan_time_us", "sph_ms_per_frame", "snapshot_ms", "seconds", "threads"}
 def strip(x):
     if isinstance(x, dict):
         return {k: strip(v) for k, v in x.items() if k not in timed and not k.startswith(("plan_time_us", "sph_ms"))}
@@ -209,6 +211,11 @@ def strip(x):
     return x
 assert strip(a) == strip(b), (strip(a), strip(b))
 PY
+# Every run already made: the new checkpoint is still written, naming them all.
+"$bin" sim "${common[@]}" --algo rrtstar --trajectory "$dir/traj_d.csv" --restart "$dir/sim.ck" \
+  --checkpoint "$dir/done.ck" > /dev/null 2>&1 || fail "restart: a finished checkpoint's restart failed"
+[[ -s $dir/done.ck ]] || fail "restart: nothing left to run wrote no checkpoint"
+cmp -s "$dir/traj1.csv" "$dir/traj_d.csv" || fail "restart: the finished checkpoint's trajectory differs"
 echo "sim_cli: restart ok"
 
 # Bad input: one line on stderr, exit 2, no file written.
@@ -245,13 +252,30 @@ bad "max-wall-s" --max-wall-s -1
 bad "goal-bias" --goal-bias 2
 bad "memory" --particles 100000000 --memory-mb 16
 bad "vtk" --vtk "$dir/bad.csv/x"
-bad "other options" "${common[@]}" --algo rrtstar --replan-every 5 --restart "$dir/sim.ck"
-bad "past --runs 1" "${common1[@]}" --runs 1 --algo rrtstar --restart "$dir/sim.ck"
+bad "other options" "${common[@]}" --algo rrtstar --replan-every 5 --trajectory "$dir/t.csv" --restart "$dir/sim.ck"
+bad "other options" "${common[@]}" --algo rrtstar --lockstep-delay 5 --trajectory "$dir/t.csv" --restart "$dir/sim.ck"
+bad "past --runs 1" "${common1[@]}" --runs 1 --algo rrtstar --trajectory "$dir/t.csv" --restart "$dir/sim.ck"
 head -c 100 "$dir/sim.ck" > "$dir/sim_cut.ck"
-bad "cut short" "${common[@]}" --algo rrtstar --restart "$dir/sim_cut.ck"
+bad "cut short" "${common[@]}" --algo rrtstar --trajectory "$dir/t.csv" --restart "$dir/sim_cut.ck"
 cp "$dir/sim.ck" "$dir/sim_flip.ck"
 printf '\x7f' | dd of="$dir/sim_flip.ck" bs=1 seek=300 conv=notrunc 2> /dev/null
-bad "checksum" "${common[@]}" --algo rrtstar --restart "$dir/sim_flip.ck"
+bad "checksum" "${common[@]}" --algo rrtstar --trajectory "$dir/t.csv" --restart "$dir/sim_flip.ck"
+# A checkpoint sealed with a sound checksum around a payload nested 150,000 deep (the CBOR
+# reader recurses: read naively, it exhausts the stack).
+python3 - "$dir/sim.ck" "$dir/deep.ck" <<'PY'
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+magic = b"hpcplan simulator checkpoint\n"
+n = struct.unpack_from("<Q", data, len(magic) + 4)[0]
+head = data[:len(magic) + 4 + 8 + n]
+payload = b"\x81" * 150000 + b"\x00"
+h = 0xcbf29ce484222325
+for b in payload:
+    h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+open(sys.argv[2], "wb").write(head + struct.pack("<Q", len(payload)) + payload + struct.pack("<Q", h))
+PY
+bad "cannot read" "${common[@]}" --algo rrtstar --trajectory "$dir/t.csv" --restart "$dir/deep.ck"
+bad "other options" "${common[@]}" --algo rrtstar --restart "$dir/sim.ck"  # no --trajectory now
 printf 'hpcplan fluid checkpoint\n' > "$dir/fluid.ck"
 bad "not an hpcplan simulator checkpoint" --restart "$dir/fluid.ck"
 bad "not a readable regular file" --restart /dev/zero

@@ -382,8 +382,8 @@ TEST(WaterValidation, CoarseDamBreakFollowsMartinAndMoyce) {
 }
 
 // SPHERIC Test 2 (MARIN's dam break with an obstacle) at a coarse resolution: 6 particles over
-// the column's height (dx = 0.092 m), the first second. The target: at every gauge, the height
-// within one particle spacing of the experiment on average (a kernel-interpolated height
+// the column's height (dx = 0.092 m), the first second. The target: the heights within one
+// particle spacing of the experiment on average where it is wet (a kernel-interpolated height
 // resolves about one spacing), and the water reaching H3 (0.05 m deep) before H2, both within
 // the second, as in the experiment. bench/sph_marin.sh reports finer resolutions over 6 s.
 TEST(WaterValidation, CoarseMarinGaugesFollowTheExperiment) {
@@ -425,12 +425,21 @@ TEST(WaterValidation, CoarseMarinGaugesFollowTheExperiment) {
     const double f = (t - a[0]) / (b[0] - a[0]);
     return a[1 + gauge] + f * (b[1 + gauge] - a[1 + gauge]);
   };
-  for (int g = 0; g < 4; ++g) {
+  // H2, H3 and H4, over the samples where the experiment's water stands 0.02 m or more (a
+  // gauge that stayed dry would miss by the water's whole depth there: 0.11-0.42 m). H1, behind
+  // the obstacle, is reached only at 0.94 s in the experiment: the first second has no say.
+  for (int g = 1; g < 4; ++g) {
     double error = 0.0;
-    for (const auto& row : measured) error += std::abs(simulated(g, row[0]) - row[column_of[g]]);
-    error /= static_cast<double>(measured.size());
-    std::printf("marin: %s mean |error| %.3f m over the first second\n", kMarinGauges[g].name,
-                error);
+    int wet = 0;
+    for (const auto& row : measured)
+      if (const double h = row[column_of[g]]; h >= 0.02) {
+        error += std::abs(simulated(g, row[0]) - h);
+        ++wet;
+      }
+    ASSERT_GT(wet, 50) << kMarinGauges[g].name;
+    error /= wet;
+    std::printf("marin: %s mean |error| %.3f m where the experiment is wet (%d samples)\n",
+                kMarinGauges[g].name, error, wet);
     EXPECT_LE(error, dx) << kMarinGauges[g].name;
   }
   auto arrival = [&](int g) {

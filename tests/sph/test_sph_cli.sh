@@ -171,6 +171,11 @@ bad "unwritable vtk" --vtk /nonexistent-dir/vtk
 bad "unwritable front" --preset water --front-csv /nonexistent-dir/f.csv
 bad "gauges without marin" --preset water --gauges-csv "$dir/g.csv"
 grep -q "needs --scenario marin" "$dir/err.txt" || fail "gauges without marin: $(cat "$dir/err.txt")"
+bad "marin too coarse" --preset water --scenario marin --particles 675
+grep -q "particles 676 or more" "$dir/err.txt" || fail "marin too coarse: $(cat "$dir/err.txt")"
+bad "empty gauges path" --preset water --scenario marin --gauges-csv ""
+bad "gauges onto the JSON" --preset water --scenario marin --particles 900 --gauges-csv "$dir/bad.json"
+grep -q "also another output's file" "$dir/err.txt" || fail "gauges onto the JSON: $(cat "$dir/err.txt")"
 bad "negative threads" --threads -1
 bad "unknown backend" --backend gpu
 # Damaged and foreign checkpoints, and a restart that names another problem.
@@ -185,6 +190,31 @@ grep -q "checksum" "$dir/err.txt" || fail "damaged checkpoint: $(cat "$dir/err.t
 bad "foreign checkpoint" --restart "$dir/foreign.bin"
 grep -q "not an hpcplan fluid checkpoint" "$dir/err.txt" || fail "foreign: $(cat "$dir/err.txt")"
 bad "missing checkpoint" --restart "$dir/none.bin"
+# A checkpoint resealed with a sound checksum around a NaN gauge reading, and around one gauge
+# row too few for its time: each refused as damaged.
+python3 - "$dir/marin.bin" "$dir" <<'PY'
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+magic = b"hpcplan fluid checkpoint\n"
+n = struct.unpack_from("<Q", data, len(magic) + 4)[0]
+at = len(magic) + 4 + 8 + n
+head, size = data[:at], struct.unpack_from("<Q", data, at)[0]
+payload = data[at + 8:at + 8 + size]
+def seal(name, p):
+    h = 0xcbf29ce484222325
+    for b in p:
+        h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+    open(f"{sys.argv[2]}/{name}", "wb").write(head + struct.pack("<Q", len(p)) + p + struct.pack("<Q", h))
+seal("nan.bin", payload[:-8] + struct.pack("<d", float("nan")))
+rows, cols = struct.unpack_from("<QQ", payload, len(payload) - 16 - 8 * 5 * 9)
+assert (rows, cols) == (9, 5), (rows, cols)  # 2 frames: t = 0, 5, ..., 40 ms
+short = payload[:len(payload) - 16 - 8 * 5 * 9] + struct.pack("<QQ", 7, 5) + payload[len(payload) - 8 * 5 * 7:]
+seal("short.bin", short)
+PY
+bad "NaN gauge reading" --restart "$dir/nan.bin" --frames 4
+grep -q "not finite" "$dir/err.txt" || fail "NaN gauge reading: $(cat "$dir/err.txt")"
+bad "gauge rows too few" --restart "$dir/short.bin" --frames 4
+grep -q "probe rows that do not fit" "$dir/err.txt" || fail "gauge rows too few: $(cat "$dir/err.txt")"
 bad "checkpoint of another problem" --restart "$dir/ck.bin" --particles 900
 grep -q "continues --preset seed --scenario dynamic --particles 800" "$dir/err.txt" ||
   fail "another problem: $(cat "$dir/err.txt")"

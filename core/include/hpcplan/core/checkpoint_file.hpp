@@ -84,8 +84,11 @@ std::string seal(std::string_view magic, std::uint32_t format, std::string_view 
 std::string_view open(std::string_view bytes, std::string_view magic, std::uint32_t format,
                       std::string_view kind, const std::string& name);
 
-// A regular file's bytes (a device or a pipe such as /dev/zero or a FIFO would be read without
-// end): InputError "--restart 'PATH': ..." if it is not one or cannot be read.
-std::string read_regular_file(const std::string& path);
+// A checkpoint file's bytes. Only a regular file (a device or a pipe such as /dev/zero or a
+// FIFO would be read without end), and its first bytes must be `magic` before the rest is
+// read (a large file of another kind costs nothing): InputError "--restart 'PATH': ..."
+// otherwise, `kind` naming what it is not.
+std::string read_regular_file(const std::string& path, std::string_view magic,
+                              std::string_view kind);
 
 }  // namespace hpcplan::checkpoint

@@ -8,8 +8,10 @@
 // CSVs and JSON then equal the uninterrupted one's (timings aside). A run is not saved within
 // itself: the planners' state between replans (D* Lite's incremental search, the planner
 // thread's plan in flight) is not serialisable as it stands, and a bitwise continuation needs it.
-// The options (as the JSON report names them, threads included: the fluid's sums depend on the
-// thread count) are saved as text and must be the restart's own, but for --runs, which may grow.
+// Every option that decides a run's result is saved as text and must be the restart's own, but
+// for --runs, which may grow, and --threads, on which no result depends (the fluid's sums are
+// the same with any thread count); whether trajectory rows are recorded must match too, so
+// that --trajectory covers every run.
 //
 // The file: core's checkpoint envelope around a CBOR document (binary IEEE doubles, so every
 // figure, infinities included, comes back bit for bit).
@@ -27,8 +29,9 @@ struct SimCheckpoint {
   std::vector<TrajectoryRow> trajectory;
 };
 
-// The options that decide a simulation's results, as one line of JSON (--runs left out).
-std::string sim_checkpoint_options(const sim::SimOptions& options, int threads);
+// The options that decide a simulation's results, as one line of JSON (--runs left out), and
+// whether the invocation records trajectory rows.
+std::string sim_checkpoint_options(const sim::SimOptions& options, bool trajectory);
 
 std::string encode_sim_checkpoint(const SimCheckpoint& checkpoint);
 // InputError "--restart 'NAME': ..." when damaged, foreign or of another version.

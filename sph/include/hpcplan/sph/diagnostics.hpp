@@ -40,9 +40,11 @@ SurgeFront dam_break_front(const FluidState& state, double density_fraction = 0.
 
 // The water's height at (x, y): the highest point of the vertical line there where the
 // kernel-interpolated density reaches `density_fraction` of the rest density (the floor counts
-// as a mirror), as a wave gauge or a volume-of-fluid code's 0.5 phase contour reads it; spray
-// and thin films below the kernel's width do not count. 0 where the line is dry. Samples every
-// dx / 8, the crossing interpolated between two samples.
+// as a mirror), as a wave gauge or a volume-of-fluid code's 0.5 phase contour reads it: spray
+// thinner than the kernel's width does not count, and a layer on the floor reads no less than
+// about one spacing (with its mirror image it fills the kernel), so heights are resolved to
+// about one spacing. 0 where the line is dry. Samples every dx / 8, the crossing interpolated
+// between two samples.
 double water_height(const FluidState& state, double x, double y, double density_fraction = 0.5);
 
 // SPHERIC Test 2's four gauges (Kleefsman et al. 2005), on the tank's centre line.
