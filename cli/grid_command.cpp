@@ -1,6 +1,7 @@
 // `hpcplan grid`: seed-002 grid search on the GOG field.
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -138,6 +139,21 @@ Action register_grid_command(CLI::App& app) {
     if (!a.goal.empty()) a.problem.goal = parse_coordinates(a.goal, "--goal");
 
     a.dist.scheme = distributed::parse_scheme(a.mode);
+    // Fault injection for tests/mpi/test_mpi_failures.sh: HPCPLAN_FAULT_THROW=RANK:EXPANSIONS
+    // makes that rank throw mid-search, HPCPLAN_FAULT_KILL=RANK:EXPANSIONS kills it.
+    for (const char* name : {"HPCPLAN_FAULT_THROW", "HPCPLAN_FAULT_KILL"}) {
+      const char* fault = std::getenv(name);
+      if (fault == nullptr) continue;
+      unsigned long long after = 0;
+      int rank = -1, used = 0;
+      if (std::sscanf(fault, "%d:%llu%n", &rank, &after, &used) != 2 || fault[used] != '\0' ||
+          rank < 0 || after == 0)
+        throw InputError(std::string(name) + " must be RANK:EXPANSIONS (both positive), not '" +
+                         fault + "'");
+      a.dist.fault_rank = rank;
+      a.dist.fault_after = after;
+      a.dist.fault_kill = std::string_view(name) == "HPCPLAN_FAULT_KILL";
+    }
     distributed::validate(a.dist, a.problem.extent, context.comm ? context.comm->size() : 1,
                           a.problem.dims);
     if (!a.output.empty()) require_writable_destination(a.output, "--output");

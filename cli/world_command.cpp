@@ -101,6 +101,7 @@ void add_common(CLI::App* cmd, const std::shared_ptr<WorldArgs>& args, const std
   add_param(cmd, "samples", o.samples_per_expansion)->capture_default_str();
   add_param(cmd, "max_states", o.max_states);
   add_param(cmd, "shortcut", o.shortcut);
+  add_param(cmd, "stop_at_first", o.stop_at_first);
   cmd->add_flag("--json", args->json, "Print one JSON object instead of a summary");
   cmd->add_option("--path-out", args->path_out, "Write the path as CSV (atomically)");
   cmd->add_option("--output", args->output, "Also write the JSON result to this file (atomically)");

@@ -98,6 +98,10 @@ void run_distributed(const GogField& field, const GridProblem& problem, const Gr
   d.sync_every = dist.sync_every;
   d.sent_filter_log2 = dist.sent_filter_log2;
   d.yield_when_idle = comm.ranks_on_node() > static_cast<int>(std::thread::hardware_concurrency());
+  if (comm.rank() == dist.fault_rank) {
+    d.fail_after_expansions = dist.fault_after;
+    d.fault_kill = dist.fault_kill;
+  }
   const partition::Ownership<W> owner(graph.layout(), p, dist.coarsen_shift, dist.slab_width,
                                       problem.extent, dist.prefix_cuts);
 

@@ -61,6 +61,9 @@ std::vector<ParamSpec> parameter_table() {
       real("step", 0, 1e9, "0", "tree planners' steering distance (0 = a twentieth of the world)"),
       integer("samples", 1, 1e6, "10", "hybrid: random points drawn per expansion"),
       flag("shortcut", "string pulling and tightening after planning"),
+      flag("stop_at_first",
+           "tree and OMPL planners: end at the first path, anytime ones too (--time is then "
+           "only a guard)"),
       // The simulator's RRT* (hpcplan sim): seed 000's values are the defaults.
       integer("iterations", 1, 1e9, "2000", "RRT* samples per replan"),
       real("rewire_radius", 0, 1e9, "0.6", "RRT*: rewire within this radius (0: shrinking r(n))"),

@@ -128,6 +128,7 @@ void run_tree(const W& world, const env::Vec<W::kDim>& start, const env::Vec<W::
   to.seed = o.seed;
   to.stop = Stop::after(o.time_s, o.cancel);
   to.step = o.step;
+  to.stop_at_first = o.stop_at_first;
   tree::TreeResult<W::kDim> r;
   if (o.algo == "rrt")
     r = tree::rrt(world, start, goal, to);
@@ -141,9 +142,9 @@ void run_tree(const W& world, const env::Vec<W::kDim>& start, const env::Vec<W::
 template <class W>
 void run_ompl(const W& world, const env::Vec<W::kDim>& start, const env::Vec<W::kDim>& goal,
               const WorldPlanOptions& o, WorldPlan<W::kDim>& plan) {
-  take_tree_result(
-      sampling::solve_with_ompl(world, start, goal, o.algo.substr(5), o.time_s, o.seed, o.cancel),
-      plan);
+  take_tree_result(sampling::solve_with_ompl(world, start, goal, o.algo.substr(5), o.time_s, o.seed,
+                                             o.cancel, o.stop_at_first),
+                   plan);
 }
 
 template <class R, class Plan>
@@ -180,7 +181,7 @@ const std::vector<WorldEntry>& world_entries() {
   static const std::vector<WorldEntry> table = [] {
     const std::vector<std::string> worlds{"map3d", "sphere2d"};
     const std::vector<std::string> grid{"resolution", "max_states", "shortcut"};
-    const std::vector<std::string> tree{"time", "seed", "step", "shortcut"};
+    const std::vector<std::string> tree{"time", "seed", "step", "shortcut", "stop_at_first"};
     std::vector<WorldEntry> t = {
         {{"astar", "grid search", worlds, grid,
           "A* on the 3^D-1-connected grid over the world (exact edges, octile heuristic)"},

@@ -33,8 +33,8 @@ namespace hpcplan::sampling {
 template <class W>
 tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const env::Vec<W::kDim>& start,
                                           const env::Vec<W::kDim>& goal, const std::string& name,
-                                          double time_s, std::uint64_t seed,
-                                          std::stop_token cancel) {
+                                          double time_s, std::uint64_t seed, std::stop_token cancel,
+                                          bool stop_at_first) {
   constexpr int D = W::kDim;
   const OmplPlannerKind* kind = find_ompl_planner(name);
   if (kind == nullptr) throw InputError("unknown OMPL planner '" + name + "'");
@@ -54,7 +54,10 @@ tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const env::Vec<W::kDim
   ob::ScopedState<> s(space), g(space);
   for (int k = 0; k < D; ++k) s[k] = start[k], g[k] = goal[k];
   pdef->setStartAndGoalStates(s, g, 1e-9);
-  pdef->setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(si));
+  auto objective = std::make_shared<ob::PathLengthOptimizationObjective>(si);
+  // Any path satisfies an infinite threshold: the optimizing planners end at their first.
+  if (stop_at_first) objective->setCostThreshold(ob::Cost(std::numeric_limits<double>::infinity()));
+  pdef->setOptimizationObjective(objective);
   ob::PlannerPtr planner = kind->make(si);
   planner->setProblemDefinition(pdef);
   planner->setup();
@@ -95,18 +98,18 @@ tree::TreeResult<W::kDim> solve_with_ompl(const W& world, const env::Vec<W::kDim
 
 template tree::TreeResult<3> solve_with_ompl(const env::BoxWorld&, const env::Vec<3>&,
                                              const env::Vec<3>&, const std::string&, double,
-                                             std::uint64_t, std::stop_token);
+                                             std::uint64_t, std::stop_token, bool);
 template tree::TreeResult<3> solve_with_ompl(const env::GogWorld<3>&, const env::Vec<3>&,
                                              const env::Vec<3>&, const std::string&, double,
-                                             std::uint64_t, std::stop_token);
+                                             std::uint64_t, std::stop_token, bool);
 template tree::TreeResult<3> solve_with_ompl(const env::OccupancyWorld&, const env::Vec<3>&,
                                              const env::Vec<3>&, const std::string&, double,
-                                             std::uint64_t, std::stop_token);
+                                             std::uint64_t, std::stop_token, bool);
 template tree::TreeResult<3> solve_with_ompl(const env::ParticleWorld&, const env::Vec<3>&,
                                              const env::Vec<3>&, const std::string&, double,
-                                             std::uint64_t, std::stop_token);
+                                             std::uint64_t, std::stop_token, bool);
 template tree::TreeResult<2> solve_with_ompl(const env::SphereWorld&, const env::Vec<2>&,
                                              const env::Vec<2>&, const std::string&, double,
-                                             std::uint64_t, std::stop_token);
+                                             std::uint64_t, std::stop_token, bool);
 
 }  // namespace hpcplan::sampling

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -21,10 +23,12 @@ struct CliRun {
   std::string out, err;
 };
 
-CliRun run(const std::string& args) {
+// `prefix`: shell commands run before the executable (exec'd in the same shell).
+CliRun run(const std::string& args, const std::string& prefix = "") {
   const auto dir = std::filesystem::temp_directory_path();
   const std::string err_file = (dir / ("hpcplan_cli_err_" + std::to_string(::getpid()))).string();
-  const std::string cmd = std::string(HPCPLAN_BIN) + " " + args + " 2>" + err_file;
+  const std::string cmd =
+      prefix + (prefix.empty() ? "" : " exec ") + HPCPLAN_BIN + " " + args + " 2>" + err_file;
   CliRun r;
   FILE* pipe = ::popen(cmd.c_str(), "r");
   char buf[4096];
@@ -112,13 +116,13 @@ TEST(Cli, JumpPointsCanBeSwitchedOff) {
         EXPECT_LE(std::abs(path[i][axis].get<int>() - path[i - 1][axis].get<int>()), 1);
   }
   const CliRun summary = run("grid --dims 2");
-  EXPECT_NE(summary.out.find("pruning    jump_points"), std::string::npos) << summary.out;
+  EXPECT_TRUE(std::regex_search(summary.out, std::regex("pruning +jump_points"))) << summary.out;
 }
 
 TEST(Cli, SummaryIsReadable) {
   const CliRun r = run("grid --dims 2");
   ASSERT_EQ(r.code, 0);
-  EXPECT_NE(r.out.find("status     solved"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("(^|\\n)status +solved\\n"))) << r.out;
   EXPECT_NE(r.out.find("quality"), std::string::npos);
 }
 
@@ -313,6 +317,61 @@ TEST(Cli, OutputFileIsWrittenWholeOrNotAtAll) {
   EXPECT_EQ(entries, 1u);
 }
 
+// hpcplan planners: the registry, readable and as JSON, whole or for one setting; an unknown
+// setting is bad input.
+TEST(Cli, PlannersListsTheRegistry) {
+  const CliRun text = run("planners");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("astar"), std::string::npos) << text.out;
+  const CliRun all = run("planners --json");
+  ASSERT_EQ(all.code, 0) << all.err;
+  const auto j = nlohmann::json::parse(all.out);
+  ASSERT_TRUE(j.contains("planners")) << all.out.substr(0, 200);
+  std::set<std::string> worlds;
+  for (const auto& p : j["planners"]) {
+    ASSERT_TRUE(p.contains("name") && p.contains("worlds") && p.contains("params")) << p.dump();
+    for (const auto& w : p["worlds"]) worlds.insert(w.get<std::string>());
+    EXPECT_NE(text.out.find(p["name"].get<std::string>()), std::string::npos) << p["name"];
+    for (const auto& param : p["params"])  // each with its CLI option and, if numeric, range
+      EXPECT_TRUE(param.contains("option") &&
+                  (param["type"] == "flag" || param["type"] == "choice" || param.contains("range")))
+          << param.dump();
+  }
+  EXPECT_EQ(worlds, (std::set<std::string>{"grid", "map3d", "sphere2d", "ompl", "sim"}));
+  const CliRun sim = run("planners --world sim --json");
+  ASSERT_EQ(sim.code, 0) << sim.err;
+  const auto js = nlohmann::json::parse(sim.out);
+  ASSERT_FALSE(js["planners"].empty());
+  EXPECT_LT(js["planners"].size(), j["planners"].size());
+  for (const auto& p : js["planners"]) {
+    const auto& w = p["worlds"];
+    EXPECT_NE(std::find(w.begin(), w.end(), "sim"), w.end()) << p.dump();
+  }
+  expect_bad_input("planners --world nosuch", "--world");
+}
+
+// A result that cannot be written after the run is a run failure: exit 1, one line naming the
+// file, the previous file untouched and no temporary left. A file-size limit (ulimit -f, with
+// SIGXFSZ ignored so that the write fails with EFBIG) stands in for a full disk.
+TEST(Cli, AnOutputThatCannotBeWrittenIsExitOne) {
+  const auto dir = std::filesystem::temp_directory_path() / "hpcplan_cli_full";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto file = dir / "result.json";
+  const std::string args =
+      "grid --dims 2 --extent 2000 --algo bfs --path --json --output " + file.string();
+  { std::ofstream(file) << "previous\n"; }
+  const CliRun r = run(args, "trap '' XFSZ; ulimit -f 8;");  // 4-8 KiB: the path is larger
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("cannot write '" + file.string() + "'"), std::string::npos) << r.err;
+  EXPECT_EQ(read_file(file), "previous\n");
+  std::size_t entries = 0;
+  for ([[maybe_unused]] auto& e : std::filesystem::directory_iterator(dir)) ++entries;
+  EXPECT_EQ(entries, 1u);
+  std::filesystem::remove_all(dir);
+}
+
 // Every numeric option of every subcommand, tried with what must be refused: negative values
 // (none of these options takes one), NaN, infinities, overflow, words and a value past its range.
 TEST(Cli, EveryNumericOptionRefusesBadValues) {
@@ -362,6 +421,27 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
       {"sim", "--goal-bias", "1.5"},
       {"sim", "--escape", "101"},
       {"sim", "--threads", "4097"},
+      {"sim", "--seed", "18446744073709551616"},
+      {"sim", "--robot-radius", "1e4"},
+      {"sim", "--reactive-horizon", "1e4"},
+      {"sim", "--reactive-margin", "1e4"},
+      {"sim", "--lockstep-delay", "1000001"},
+      {"sim", "--settle-frames", "1000001"},
+      {"sim", "--density-support", "1e10"},
+      {"sim", "--density-threshold", "1e10"},
+      {"sim", "--every", "100000001"},
+      {"sim", "--memory-mb", "1e10"},
+      {"sim", "--step", "1e10"},
+      {"sim", "--rewire-radius", "1e10"},
+      {"sim", "--goal-radius", "1e10"},
+      {"sim", "--time", "1e10"},
+      {"sph", "--particles", "200000001"},
+      {"sph", "--frames", "100000001"},
+      {"sph", "--seed", "18446744073709551616"},
+      {"sph", "--threads", "4097"},
+      {"sph", "--every", "100000001"},
+      {"sph", "--memory-mb", "1e10"},
+      {"sph", "--checkpoint-every", "100000001"},
   };
   std::vector<Case> all = cases;
   for (const char* world : {"map3d", "sphere2d"})
@@ -374,8 +454,9 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
                      : o == "--seed" || o == "--max-states" ? "18446744073709551616"
                                                             : "1e10"});
     }
-  int tried = 0;
+  int tried = 0, expected = 0;
   for (const Case& c : all) {
+    expected += c.too_big.empty() ? 10 : 11;
     std::vector<std::string> bad = {"-5",   "-0.5",  "nan", "NaN", "inf",
                                     "-inf", "1e400", "abc", "3x",  ""};
     if (!c.too_big.empty()) bad.push_back(c.too_big);
@@ -390,7 +471,8 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
       ++tried;
     }
   }
-  EXPECT_EQ(tried, 56 * 10 + 56);
+  EXPECT_EQ(tried, expected);
+  EXPECT_EQ(all.size(), 77u);  // every numeric option of grid, ompl, sim, sph, map3d, sphere2d
 }
 
 }  // namespace

@@ -202,7 +202,9 @@ og::PathGeometric solve_with_grid(const GogSpace& w, bool shortcut, GridReport* 
   planner->setShortcut(shortcut);
   planner->setSmoothingBudget(smoothing_budget);
   ss.setPlanner(planner);
-  const auto status = ss.solve(10.0);
+  // The grid planner is complete and bounded by its state budget: no deadline (a converged
+  // smoothing, budget 0, would be cut short by one).
+  const auto status = ss.solve(ob::plannerNonTerminatingCondition());
   EXPECT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION);
   if (report) *report = planner->lastReport();
   return ss.getSolutionPath();
@@ -377,25 +379,52 @@ TEST(OmplBenchmark, BadOptionsAreInputErrors) {
   EXPECT_THROW(validate(o), InputError);
 }
 
+// Two invocations, so that no outcome depends on the machine's speed: the planners that end
+// at a path (the grid planners, RRT-Connect) under a 30 s guard they never reach, which must
+// answer every run and smooth within it; and an anytime planner (BIT*) for 0.3 s, whose rows
+// must be consistent whatever it managed in that time.
 TEST(OmplBenchmark, EveryRunIsRecordedValidatedAndScored) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   OmplBenchOptions o;
   o.dims = 3;
   o.extent = 30;
-  o.planners = {"gridastar", "gridastar_lattice", "rrtconnect", "bitstar"};
-  o.time_s = 0.3;
+  o.planners = {"gridastar", "gridastar_lattice", "rrtconnect"};
+  o.time_s = 30.0;
   o.runs = 2;
   const auto r = run_ompl_benchmark(o);
-  ASSERT_EQ(r.rows.size(), 8u);
+  OmplBenchOptions oa = o;
+  oa.planners = {"bitstar"};
+  oa.time_s = 0.3;
+  const auto anytime = run_ompl_benchmark(oa);
+  ASSERT_EQ(r.rows.size(), 6u);
+  ASSERT_EQ(anytime.rows.size(), 2u);
   ASSERT_GT(r.reference_quality, 0.0);
-  int solved = 0;
-  for (const auto& row : r.rows) {
+  auto check = [](const OmplRunRow& row, double reference) {
     SCOPED_TRACE(row.planner + " run " + std::to_string(row.run));
     EXPECT_EQ(row.dims, 3);
     EXPECT_GT(row.collision_checks, 0u);
-    // The grid planners are complete on this solvable field: they must answer every run.
+    if (!row.solved) return;
+    EXPECT_TRUE(row.path_valid);  // re-checked by the harness for solved runs only
+    // No path is shorter than the straight line (quality 1), whatever the planner.
+    EXPECT_GE(row.quality_first, 1.0 - 1e-12);
+    EXPECT_GE(row.quality_final, 1.0 - 1e-12);
+    EXPECT_LE(row.quality_final, row.quality_first + 1e-12);
+    // The improvements come in time order, each shorter than the one before.
+    for (std::size_t k = 1; k < row.improvements.size(); ++k) {
+      EXPECT_GE(row.improvements[k].first, row.improvements[k - 1].first);
+      EXPECT_LE(row.improvements[k].second, row.improvements[k - 1].second + 1e-12);
+    }
+    if (!row.improvements.empty()) EXPECT_EQ(row.time_first_s, row.improvements[0].first);
+    if (row.time_best_s >= 0) {
+      EXPECT_TRUE(row.anytime);
+      EXPECT_LE(row.quality_best, 0.5 * (row.quality_first + reference) + 1e-12);
+    }
+  };
+  for (const auto& row : r.rows) {
+    SCOPED_TRACE(row.planner + " run " + std::to_string(row.run));
+    // Every planner here ends at a path, and this field is solvable: every run answers.
+    EXPECT_TRUE(row.solved);
     if (row.planner.starts_with("gridastar")) {
-      EXPECT_TRUE(row.solved);
       // It reports its answer through the intermediate-solution callback, as the anytime
       // planners do, so its first-solution time is taken the same way; one answer, no "best".
       EXPECT_EQ(row.improvements.size(), 1u);
@@ -412,20 +441,12 @@ TEST(OmplBenchmark, EveryRunIsRecordedValidatedAndScored) {
     } else {
       EXPECT_EQ(row.smoothing_s, -1.0);  // not a grid planner: not applicable
     }
-    if (!row.solved) continue;
-    ++solved;
-    EXPECT_TRUE(row.path_valid);  // re-checked by the harness for solved runs only
-    // No path is shorter than the straight line (quality 1), whatever the planner.
-    EXPECT_GE(row.quality_first, 1.0 - 1e-12);
-    EXPECT_GE(row.quality_final, 1.0 - 1e-12);
-    EXPECT_LE(row.quality_final, row.quality_first + 1e-12);
-    EXPECT_LE(row.time_first_s, row.time_s + 1e-3);
-    if (row.time_best_s >= 0) {
-      EXPECT_TRUE(row.anytime);
-      EXPECT_LE(row.quality_best, 0.5 * (row.quality_first + r.reference_quality) + 1e-12);
-    }
+    check(row, r.reference_quality);
   }
-  EXPECT_GE(solved, 4);
+  for (const auto& row : anytime.rows) {
+    EXPECT_EQ(row.smoothing_s, -1.0);
+    check(row, anytime.reference_quality);
+  }
   // The reference is the best final quality of a solved run.
   double best = 1e300;
   for (const auto& row : r.rows)
@@ -439,7 +460,7 @@ TEST(OmplBenchmark, EveryRunIsRecordedValidatedAndScored) {
                       "time_best_s,quality_best,quality_final,",
                       0),
             0u);
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 9);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 7);
 }
 
 }  // namespace

@@ -218,6 +218,19 @@ PY
 cmp -s "$dir/traj1.csv" "$dir/traj_d.csv" || fail "restart: the finished checkpoint's trajectory differs"
 echo "sim_cli: restart ok"
 
+# The wall-time cap: a cap no frame can meet ends every run after its first frame, recorded as
+# failed (wall_time_cap), never dropped.
+"$bin" sim --particles 300 --settle-frames 0 --runs 2 --max-wall-s 1e-9 --csv "$dir/wall.csv" \
+  > /dev/null 2>&1 || fail "wall-time cap: the run failed"
+python3 - "$dir/wall.csv" <<'PY' || fail "wall-time cap: rows"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 2, rows
+for r in rows:
+    assert r["end"] == "wall_time_cap" and r["success"] == "0" and r["frames"] == "1", r
+PY
+echo "sim_cli: wall-time cap ok"
+
 # Bad input: one line on stderr, exit 2, no file written.
 bad() {
   local expect=$1; shift

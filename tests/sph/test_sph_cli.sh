@@ -82,7 +82,7 @@ echo "sph_cli: render ok"
 # The dam break's front.
 "$bin" sph --preset water --scenario dambreak --particles 500 --frames 3 --front-csv "$dir/front.csv" \
   > "$dir/water.txt" || fail "dam break failed"
-grep -q "status         ok" "$dir/water.txt" || fail "dam break summary: $(cat "$dir/water.txt")"
+grep -Eq "^ *status +ok$" "$dir/water.txt" || fail "dam break summary: $(cat "$dir/water.txt")"
 head -1 "$dir/front.csv" | grep -qx "T,Z" || fail "front CSV header"
 [[ $(wc -l < "$dir/front.csv") -gt 20 ]] || fail "front CSV too short"
 # Its values: T = t sqrt(2 g / a) from 0 to the last frame's end (3 x 0.02 s, a = 0.05715 m,
@@ -131,7 +131,8 @@ for f in "$dir"/ck_full/*; do
   cmp -s "$f" "$dir/ck_part/$(basename "$f")" || fail "checkpoint: $(basename "$f") differs after a restart"
 done
 [[ $(ls "$dir/ck_full" | wc -l) -eq $(ls "$dir/ck_part" | wc -l) ]] || fail "checkpoint: other files"
-grep -q '"restarted_at_frame":20' "$dir/ck.json" || fail "checkpoint: the restart frame is not reported"
+python3 -c "import json,sys; assert json.load(open(sys.argv[1]))['restarted_at_frame'] == 20" "$dir/ck.json" ||
+  fail "checkpoint: the restart frame is not reported"
 "$bin" sph --preset water --scenario dambreak --particles 500 --frames 4 \
   --front-csv "$dir/front_full.csv" > /dev/null || fail "checkpoint: water run failed"
 "$bin" sph --preset water --scenario dambreak --particles 500 --frames 2 \
@@ -228,7 +229,8 @@ grep -q "also another output's file" "$dir/err.txt" || fail "same file: $(cat "$
 # --backend cuda: refused with its reason where no GPU can run it (this build may or may not have
 # the backend); where one can, it runs and reports its backend.
 if "$bin" sph --backend cuda --particles 500 --frames 2 --json > "$dir/cuda.json" 2> "$dir/err.txt"; then
-  grep -q '"backend":"cuda"' "$dir/cuda.json" || fail "a cuda run does not report its backend"
+  python3 -c "import json,sys; assert json.load(open(sys.argv[1]))['backend'] == 'cuda'" "$dir/cuda.json" ||
+    fail "a cuda run does not report its backend"
 else
   bad "cuda where it cannot run" --backend cuda
   grep -q -- "--backend cuda: " "$dir/err.txt" || fail "cuda refusal without its reason"

@@ -73,10 +73,10 @@ TEST(PlannerRegistry, EveryWorldPlannerRunsByItsName) {
       plan::WorldPlanOptions o;
       o.algo = name;
       o.resolution = 0.25;
-      // Anytime planners use their whole budget; the others end at a path, so give them room
-      // (the sanitizer builds run several times slower).
-      const auto& spec = PlannerRegistry::get().require(setting, name);
-      o.time_s = spec.family == "ompl" || name == "rrtstar" ? 0.25 : 30.0;
+      // Every planner ends at its first path (anytime ones too): the time is only a guard, so
+      // the outcome does not depend on the machine's speed (or a sanitizer's).
+      o.stop_at_first = true;
+      o.time_s = 60.0;
       const auto p = plan::plan_in_world(map.world, *map.start, *map.goal, o);
       EXPECT_EQ(p.status, Status::solved);
       if (p.status == Status::solved)

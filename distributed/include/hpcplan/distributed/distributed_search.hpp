@@ -28,6 +28,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -58,6 +59,12 @@ struct DistOptions {
   std::uint64_t sync_every = 4096;  // bulk_sync: expansions between exchanges (the seed's N)
   bool yield_when_idle = false;     // async: give the core away while idle (oversubscribed runs)
   int sent_filter_log2 = 16;        // slots of the duplicate filter on outgoing records; 0 = off
+  // Fault injection for the failure tests: > 0 makes this rank fail once it has expanded this
+  // many states, while the others wait for it in the exchange: it throws a RunError (a bug, a
+  // failed allocation), or with fault_kill it dies at once (SIGKILL: the node lost, the OOM
+  // killer). 0: never.
+  std::uint64_t fail_after_expansions = 0;
+  bool fault_kill = false;
 };
 
 template <class State>
@@ -283,9 +290,16 @@ class DistributedSearch {
       }
       expand(x, g, route);
       ++done;
+      if (expanded_ == dist_.fail_after_expansions) inject_fault();
       if ((expanded_ & 1023) == 0) check_time();
     }
     return done;
+  }
+
+  [[noreturn]] void inject_fault() const {
+    if (dist_.fault_kill) std::raise(SIGKILL);
+    throw RunError("injected fault after " + std::to_string(expanded_) +
+                   " expansions (HPCPLAN_FAULT_THROW)");
   }
 
   void check_time() {

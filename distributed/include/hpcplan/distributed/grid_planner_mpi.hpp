@@ -20,6 +20,12 @@ struct DistGridOptions {
   std::uint64_t sync_every = 4096;
   int sent_filter_log2 = 16;    // duplicate filter on outgoing records (0 = off)
   bool compare_serial = false;  // rank 0 also solves serially first, for overhead and speedup
+  // Fault injection for the failure tests (DistOptions::fail_after_expansions): rank
+  // `fault_rank` throws (or, with fault_kill, is killed) after `fault_after` expansions;
+  // 0 expansions: never.
+  int fault_rank = -1;
+  std::uint64_t fault_after = 0;
+  bool fault_kill = false;
 };
 
 Scheme parse_scheme(std::string_view name);  // InputError if unknown

@@ -26,6 +26,7 @@ struct WorldPlanOptions {
   double spacing = 0.0;     // visgraph: bend points this far apart; 0 = a 40th of the world
   std::uint64_t seed = 1;
   double time_s = 1.0;             // tree planners: RRT* refines until then; others stop at a path
+  bool stop_at_first = false;      // tree and OMPL planners: anytime ones end at their first path
   double step = 0.0;               // tree planners' eta; 0 = a twentieth of the largest extent
   std::uint64_t max_states = 0;    // grid searches' memory budget (states); 0 = none
   int samples_per_expansion = 10;  // hybrid, hybrid_sample
