@@ -3,9 +3,11 @@
 namespace hpcplan::mpi {
 
 TerminationDetector::~TerminationDetector() {
-  // A wave still pending here belongs to a search that ended by an error; leave it to the
-  // job's abort rather than wait for ranks that will never join.
-  if (pending_) MPI_Request_free(&request_);
+  // A wave still pending here belongs to a search that ended by an error: it is left to the
+  // job's abort rather than waited for (the other ranks may never join). It is not freed
+  // either: MPI forbids MPI_Request_free on a non-blocking collective's request, and Open MPI
+  // then aborted the job with its own error before the failing rank could say why
+  // (tests/mpi/test_mpi_failures.sh, the rank that throws).
 }
 
 bool TerminationDetector::poll(bool passive, std::uint64_t sent, std::uint64_t received) {

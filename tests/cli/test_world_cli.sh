@@ -41,7 +41,8 @@ PY
 # --time is a guard here: every planner ends at its first path (RRT* with --stop-at-first), so
 # no outcome depends on the machine's speed.
 for algo in astar wastar dijkstra thetastar visgraph rrt birrt rrtstar ompl:rrtconnect; do
-  first=$([[ $algo == rrtstar || $algo == ompl:* ]] && echo --stop-at-first)
+  first=""
+  if [[ $algo == rrtstar || $algo == ompl:* ]]; then first=--stop-at-first; fi
   "$BIN" map3d --map "$MAPS/window.txt" --algo "$algo" --resolution 0.2 --time 60 $first --json >"$tmp/out.json" ||
     fail "map3d --algo $algo failed"
   check_path "$tmp/out.json" "$MAPS/window.txt" || fail "map3d --algo $algo returned a bad path"
@@ -58,7 +59,8 @@ head -1 "$tmp/p.csv" | grep -qx "x,y,z" || fail "path CSV header"
 
 # Sphere world, every planner including the seed 003 hybrids.
 for algo in astar thetastar visgraph hybrid hybrid_pick hybrid_sample rrtstar; do
-  first=$([[ $algo == rrtstar ]] && echo --stop-at-first)
+  first=""
+  if [[ $algo == rrtstar ]]; then first=--stop-at-first; fi
   "$BIN" sphere2d --map "$MAPS/sphere_world.txt" --algo "$algo" --time 60 $first --json >"$tmp/s.json" || fail "sphere2d $algo"
   "$PY" -c "import json; j=json.load(open('$tmp/s.json')); assert j['status']=='solved' and j['path'][0]==[-8,0] and j['path'][-1]==[8,0.5], j['path'][:1]"
 done

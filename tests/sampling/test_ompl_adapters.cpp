@@ -399,7 +399,7 @@ TEST(OmplBenchmark, EveryRunIsRecordedValidatedAndScored) {
   ASSERT_EQ(r.rows.size(), 6u);
   ASSERT_EQ(anytime.rows.size(), 2u);
   ASSERT_GT(r.reference_quality, 0.0);
-  auto check = [](const OmplRunRow& row, double reference) {
+  auto check = [](const plan::OmplRunRow& row, double reference) {
     SCOPED_TRACE(row.planner + " run " + std::to_string(row.run));
     EXPECT_EQ(row.dims, 3);
     EXPECT_GT(row.collision_checks, 0u);
@@ -414,7 +414,9 @@ TEST(OmplBenchmark, EveryRunIsRecordedValidatedAndScored) {
       EXPECT_GE(row.improvements[k].first, row.improvements[k - 1].first);
       EXPECT_LE(row.improvements[k].second, row.improvements[k - 1].second + 1e-12);
     }
-    if (!row.improvements.empty()) EXPECT_EQ(row.time_first_s, row.improvements[0].first);
+    if (!row.improvements.empty()) {
+      EXPECT_EQ(row.time_first_s, row.improvements[0].first);
+    }
     if (row.time_best_s >= 0) {
       EXPECT_TRUE(row.anytime);
       EXPECT_LE(row.quality_best, 0.5 * (row.quality_first + reference) + 1e-12);
