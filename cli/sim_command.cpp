@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "hpcplan/core/atomic_file.hpp"
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/core/interrupt.hpp"
 #include "hpcplan/core/memory.hpp"
 #include "hpcplan/core/progress.hpp"
 #include "hpcplan/core/stopwatch.hpp"
@@ -115,6 +116,9 @@ int run(SimArgs& a) {
       trajectory.push_back({v.run, v.frame, v.fluid->time, v.robot, v.goal, v.clearance});
     if (!a.vtk_dir.empty() && (v.frame % a.every == 0 || v.last)) write_vtk(v);
   };
+  // SLURM's warning signal (or SIGTERM, Ctrl-C) ends the invocation after the current frame:
+  // the run under way is dropped, the finished ones are in the checkpoint (core/interrupt.hpp).
+  interrupt::install();
   const Stopwatch clock;
   inv.result = sim::run_simulation(
       o,
@@ -127,7 +131,15 @@ int run(SimArgs& a) {
           write_file_atomically(a.checkpoint,
                                 io::encode_sim_checkpoint({options, so_far, trajectory}));
       },
-      on_frame, std::move(done.result));
+      on_frame, std::move(done.result), [] { return interrupt::requested() != 0; });
+  if (inv.result.interrupted) {
+    inv.interrupted_by = interrupt::name(interrupt::requested());
+    inv.checkpoint = a.checkpoint;
+    // The dropped run's rows go with it (the restart makes it again).
+    std::erase_if(trajectory, [&](const io::TrajectoryRow& r) {
+      return r.run > static_cast<int>(inv.result.runs.size());
+    });
+  }
   inv.seconds = clock.seconds();
   // (Also when a restart had no run left to make: the new checkpoint still names every run.)
   if (!a.checkpoint.empty())

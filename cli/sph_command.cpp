@@ -14,6 +14,7 @@
 #include "commands.hpp"
 #include "hpcplan/core/atomic_file.hpp"
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/core/interrupt.hpp"
 #include "hpcplan/core/memory.hpp"
 #include "hpcplan/core/stopwatch.hpp"
 #include "hpcplan/io/sph_report.hpp"
@@ -143,6 +144,9 @@ int run(const SphArgs& a) {
     watch = [&probes](const sph::FluidState& s) { sph::record_probes(s, probes); };
     if (!restart) watch(fluid.state());
   }
+  // SLURM's warning signal (or SIGTERM, Ctrl-C) ends the run at the next frame's end, with its
+  // checkpoint, so that a requeued job continues with --restart (core/interrupt.hpp).
+  interrupt::install();
   const Stopwatch clock;
   info.report = sph::run_frames(
       fluid, a.frames - fluid.frames_done(),
@@ -156,7 +160,15 @@ int run(const SphArgs& a) {
           write_file_atomically(a.checkpoint,
                                 sph::encode_checkpoint(o, frame, fluid.full_state(), probes.rows));
       },
-      watch);
+      watch, [] { return interrupt::requested() != 0; });
+  if (info.report.interrupted) {
+    info.interrupted_by = interrupt::name(interrupt::requested());
+    if (!a.checkpoint.empty() && sph::first_problem(fluid.full_state()).empty()) {
+      write_file_atomically(a.checkpoint, sph::encode_checkpoint(o, fluid.frames_done(),
+                                                                 fluid.full_state(), probes.rows));
+      info.checkpoint = a.checkpoint;
+    }
+  }
   if (restart && !a.checkpoint.empty() && restart->frame == a.frames)
     write_file_atomically(a.checkpoint,
                           sph::encode_checkpoint(o, a.frames, fluid.full_state(), probes.rows));

@@ -112,6 +112,11 @@ nlohmann::json to_json(const SimInvocation& s) {
   j["threads"] = s.threads;
   j["backend"] = o.backend;
   j["seconds"] = s.seconds;
+  j["status"] = s.result.interrupted ? "interrupted" : "ok";
+  if (s.result.interrupted) {
+    j["interrupted_by"] = s.interrupted_by;
+    j["checkpoint"] = s.checkpoint;
+  }
   nlohmann::json rows = nlohmann::json::array();
   std::vector<double> ttg, plan, plan_p50, plan_p99, fail_rate, lengths, sph_ms;
   std::uint64_t successes = 0, replans = 0, failed = 0, escapes = 0;
@@ -240,6 +245,11 @@ std::string to_summary(const SimInvocation& s) {
       100.0 * a["contact_rate_all_frames"].get<double>(), s.options.safety.robot_radius,
       s.options.safety.particle_radius);
   out += line;
+  if (s.result.interrupted)
+    out += "interrupted by " + s.interrupted_by + " after " + std::to_string(s.result.runs.size()) +
+           " run(s)" +
+           (s.checkpoint.empty() ? std::string(" (no --checkpoint: nothing to restart from)\n")
+                                 : "; continue with --restart " + s.checkpoint + "\n");
   return out;
 }
 

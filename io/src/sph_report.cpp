@@ -29,7 +29,9 @@ nlohmann::json to_json(const SphRun& r) {
   const double max_ms =
       rep.frame_ms.empty() ? 0.0 : *std::max_element(rep.frame_ms.begin(), rep.frame_ms.end());
   nlohmann::json j = {
-      {"status", rep.stable ? "ok" : "unstable"},
+      {"status", !rep.stable       ? "unstable"
+                 : rep.interrupted ? "interrupted"
+                                   : "ok"},
       {"preset", sph::to_string(r.options.preset)},
       {"scenario", sph::to_string(r.options.scenario)},
       {"particles", r.summary.fluid},
@@ -60,6 +62,10 @@ nlohmann::json to_json(const SphRun& r) {
   if (!rep.stable) {
     j["unstable_frame"] = rep.unstable_frame;
     j["problem"] = rep.problem;
+  }
+  if (rep.interrupted) {
+    j["interrupted_by"] = r.interrupted_by;
+    j["checkpoint"] = r.checkpoint;
   }
   if (r.params.preset == sph::Preset::water) {
     j["particle_spacing"] = r.params.particle_spacing;
@@ -93,9 +99,14 @@ std::string to_summary(const SphRun& r) {
       "  throughput     %.3g particle-steps/s\n"
       "  neighbours     mean %.1f, max %u\n"
       "  density error  max %.4f\n  kinetic energy %.6g J, max speed %.3f m/s\n",
-      rep.stable ? "ok"
-                 : ("unstable at frame " + std::to_string(rep.unstable_frame) + ": " + rep.problem)
-                       .c_str(),
+      !rep.stable
+          ? ("unstable at frame " + std::to_string(rep.unstable_frame) + ": " + rep.problem).c_str()
+      : rep.interrupted
+          ? ("interrupted by " + r.interrupted_by + " after frame " + std::to_string(rep.frames) +
+             (r.checkpoint.empty() ? std::string(" (no --checkpoint: nothing to restart from)")
+                                   : "; continue with --restart " + r.checkpoint))
+                .c_str()
+          : "ok",
       static_cast<unsigned long long>(rep.frames), rep.frames * r.params.frame_dt,
       static_cast<unsigned long long>(rep.substeps), median(rep.frame_ms), max_ms,
       median(rep.grid_ms), particle_steps_per_s(r), r.summary.neighbours_mean,

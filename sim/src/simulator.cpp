@@ -141,8 +141,10 @@ ReplanRecord record_of(int run, const FinishedPlan& f, const std::string& algo, 
   return r;
 }
 
-void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRecord>& replans,
-             const std::function<void(const FrameView&)>& on_frame) {
+// Returns false when should_stop ended the run before it ended by itself (nothing recorded).
+bool run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRecord>& replans,
+             const std::function<void(const FrameView&)>& on_frame,
+             const std::function<bool()>& should_stop) {
   const std::uint64_t run_seed =
       splitmix64_mix(o.seed ^ splitmix64_mix(static_cast<std::uint64_t>(run)));
   rec.run_number = run;
@@ -161,7 +163,7 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
   for (int f = 0, settle = settle_frames(o); f < settle; ++f)
     if (const auto r = fluid.advance_frame(); !r.problem.empty()) {
       rec.end = RunEnd::fluid_unstable;
-      return;
+      return true;
     }
 
   Placement at;
@@ -271,7 +273,13 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
       on_frame(v);
     }
     if (end) break;
+    if (should_stop && should_stop()) break;
     if (o.pace == Pace::realtime) std::this_thread::sleep_until(frame_start + frame_wall);
+  }
+  if (!end) {  // interrupted: the run is dropped whole (a restart makes it again)
+    thread.cancel();
+    (void)thread.take();
+    return false;
   }
   rec.end = *end;
   // The run is over: a plan still running is cancelled (and logged as such); finished ones that
@@ -293,6 +301,7 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
   rec.min_clearance = safety.min_clearance;  // +infinity: nothing to collide with
   rec.max_overlap = safety.max_overlap;
   rec.reactive_overrides = reactive ? reactive->overrides() : 0;
+  return true;
 }
 
 }  // namespace
@@ -300,7 +309,8 @@ void run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
 SimResult run_simulation(
     const SimOptions& options,
     const std::function<void(const RunRecord&, const SimResult& so_far)>& on_run,
-    const std::function<void(const FrameView&)>& on_frame, SimResult done) {
+    const std::function<void(const FrameView&)>& on_frame, SimResult done,
+    const std::function<bool()>& should_stop) {
   validate(options);
   if (done.runs.size() > static_cast<std::size_t>(options.runs))
     throw InputError("the runs already made (" + std::to_string(done.runs.size()) +
@@ -308,7 +318,12 @@ SimResult run_simulation(
   SimResult result = std::move(done);
   for (int run = static_cast<int>(result.runs.size()) + 1; run <= options.runs; ++run) {
     RunRecord rec;
-    run_one(options, run, rec, result.replans, on_frame);
+    const std::size_t replans_before = result.replans.size();
+    if (!run_one(options, run, rec, result.replans, on_frame, should_stop)) {
+      result.replans.resize(replans_before);
+      result.interrupted = true;
+      break;
+    }
     summarise_replans(rec, result.replans);
     result.runs.push_back(rec);
     if (on_run) on_run(rec, result);

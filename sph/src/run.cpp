@@ -4,7 +4,8 @@ namespace hpcplan::sph {
 
 RunReport run_frames(Fluid& fluid, std::uint64_t frames,
                      const std::function<void(std::uint64_t, const FluidState&)>& after_frame,
-                     const std::function<void(const FluidState&)>& after_substep) {
+                     const std::function<void(const FluidState&)>& after_substep,
+                     const std::function<bool()>& should_stop) {
   RunReport r;
   const std::uint64_t first = fluid.frames_done() + 1;
   r.frames = fluid.frames_done();
@@ -19,6 +20,10 @@ RunReport run_frames(Fluid& fluid, std::uint64_t frames,
       r.stable = false;
       r.unstable_frame = f;
       r.problem = frame.problem;
+      break;
+    }
+    if (should_stop && f + 1 < first + frames && should_stop()) {
+      r.interrupted = true;
       break;
     }
   }

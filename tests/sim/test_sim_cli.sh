@@ -218,6 +218,31 @@ PY
 cmp -s "$dir/traj1.csv" "$dir/traj_d.csv" || fail "restart: the finished checkpoint's trajectory differs"
 echo "sim_cli: restart ok"
 
+# Interrupted by SLURM's warning signal once run 1 is saved: the invocation ends after the
+# current frame (exit 0, status interrupted), the run under way is dropped whole, and a restart
+# makes the rest: together the uninterrupted invocation's CSVs, byte for byte.
+"$bin" sim "${common1[@]}" --runs 3 --algo rrtstar --csv "$dir/runs3.csv" --trajectory "$dir/traj3.csv" \
+  --no-timings > /dev/null 2>&1 || fail "interrupt: the reference failed"
+rm -f "$dir/int.ck"
+"$bin" sim "${common1[@]}" --runs 3 --algo rrtstar --trajectory "$dir/traj_i.csv" \
+  --checkpoint "$dir/int.ck" --no-timings --json > "$dir/int.json" 2> /dev/null &
+pid=$!
+for _ in $(seq 600); do [[ -e $dir/int.ck ]] && break; sleep 0.05; done
+kill -USR1 "$pid"
+wait "$pid" || fail "interrupt: exit $?"
+python3 - "$dir/int.json" <<'PY' || fail "interrupt: report"
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["status"] == "interrupted" and j["interrupted_by"] == "SIGUSR1", j
+assert 1 <= len(j["runs"]) < 3, len(j["runs"])
+PY
+"$bin" sim "${common1[@]}" --runs 3 --algo rrtstar --trajectory "$dir/traj_i.csv" \
+  --restart "$dir/int.ck" --csv "$dir/runs_i.csv" --no-timings > /dev/null 2>&1 ||
+  fail "interrupt: the restart failed"
+cmp -s "$dir/runs3.csv" "$dir/runs_i.csv" || fail "interrupt: the runs differ from the uninterrupted ones"
+cmp -s "$dir/traj3.csv" "$dir/traj_i.csv" || fail "interrupt: the trajectory differs"
+echo "sim_cli: interrupt ok"
+
 # The wall-time cap: a cap no frame can meet ends every run after its first frame, recorded as
 # failed (wall_time_cap), never dropped.
 "$bin" sim --particles 300 --settle-frames 0 --runs 2 --max-wall-s 1e-9 --csv "$dir/wall.csv" \

@@ -150,6 +150,37 @@ cmp -s "$dir/front_full.csv" "$dir/front_part.csv" || fail "checkpoint: the fron
 cmp -s "$dir/gauges_full.csv" "$dir/gauges_part.csv" || fail "checkpoint: the gauges differ after a restart"
 echo "sph_cli: checkpoint ok"
 
+# Interrupted (SLURM's warning signal, SIGUSR1; SIGTERM at the limit): the run ends at the next
+# frame's end with exit 0 and status interrupted, writes its checkpoint there, leaves no
+# temporary file, and a restart from it writes the uninterrupted run's files byte for byte.
+# The signal is sent once the fifth frame's VTK exists (the wait is a guard, not the outcome).
+for sig in USR1 TERM; do
+  rm -rf "$dir/int" "$dir/int.bin"
+  "$bin" sph --preset seed --scenario dynamic --particles 800 --seed 5 --frames 100000 \
+    --vtk "$dir/int" --every 1 --checkpoint "$dir/int.bin" --checkpoint-every 1000000 --json \
+    > "$dir/int.json" 2> "$dir/int.err" &
+  pid=$!
+  for _ in $(seq 600); do [[ -e $dir/int/fluid_000005.vtu ]] && break; sleep 0.1; done
+  kill -"$sig" "$pid"
+  wait "$pid" || fail "interrupted ($sig): exit $? ($(cat "$dir/int.err"))"
+  python3 - "$dir/int.json" "$sig" <<'PY' || fail "interrupted ($sig): report"
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["status"] == "interrupted" and j["interrupted_by"] == "SIG" + sys.argv[2], j
+assert 5 <= j["frames"] < 100000 and j["checkpoint"].endswith("int.bin"), j
+PY
+  ! ls "$dir/int" | grep -q "tmp" || fail "interrupted ($sig): a temporary file was left: $(ls "$dir/int" | grep tmp)"
+done
+stopped=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['frames'])" "$dir/int.json")
+"$bin" sph --restart "$dir/int.bin" --frames $((stopped + 5)) --vtk "$dir/int" --every 1 > /dev/null ||
+  fail "interrupted: the restart failed"
+"$bin" sph --preset seed --scenario dynamic --particles 800 --seed 5 --frames $((stopped + 5)) \
+  --vtk "$dir/int_ref" --every 1 > /dev/null || fail "interrupted: the reference run failed"
+for f in "$dir"/int_ref/*; do
+  cmp -s "$f" "$dir/int/$(basename "$f")" || fail "interrupted: $(basename "$f") differs after the restart"
+done
+echo "sph_cli: interrupt ok"
+
 # Bad input: exit 2, one line on stderr, nothing written.
 bad() {
   local what=$1; shift

@@ -16,6 +16,9 @@ struct SimInvocation {
   int threads = 1;
   sim::SimResult result;
   double seconds = 0.0;
+  // result.interrupted: the signal that asked it to end, and the checkpoint holding the runs
+  // finished before ("" without --checkpoint).
+  std::string interrupted_by, checkpoint;
 };
 
 // Header + one row per run. `timings`: false writes timing columns as empty, so that two

@@ -27,6 +27,9 @@ struct SphRun {
   // A restarted run: the checkpoint's frame (0: from the start). The report's substeps and
   // frame times are this process's frames, after it.
   std::uint64_t restarted_at_frame = 0;
+  // An interrupted run (report.interrupted): the signal that asked it to end ("SIGUSR1", ...)
+  // and the checkpoint written at its last frame ("" without --checkpoint).
+  std::string interrupted_by, checkpoint;
 };
 
 nlohmann::json to_json(const SphRun& run);

@@ -84,6 +84,7 @@ struct FrameView {
 struct SimResult {
   std::vector<RunRecord> runs;
   std::vector<ReplanRecord> replans;
+  bool interrupted = false;  // should_stop ended it; `runs` are those finished before
 };
 
 // Where the robot and the goal start. The seed's scenarios: two fluid particles at least half
@@ -109,9 +110,12 @@ void validate(const SimOptions& options);
 // `on_run` sees each run's record as it ends, with every record so far (progress, checkpoints);
 // `on_frame` every frame. `done`: the runs already made (a restart's), which are kept and not
 // run again: the runs are independent, so the result is the uninterrupted one (lockstep pace).
+// `should_stop`, asked after every frame, ends the invocation there: the run under way is
+// dropped whole (its records, its plan in flight cancelled) and the result is interrupted.
 SimResult run_simulation(
     const SimOptions& options,
     const std::function<void(const RunRecord&, const SimResult& so_far)>& on_run = {},
-    const std::function<void(const FrameView&)>& on_frame = {}, SimResult done = {});
+    const std::function<void(const FrameView&)>& on_frame = {}, SimResult done = {},
+    const std::function<bool()>& should_stop = {});
 
 }  // namespace hpcplan::sim
