@@ -5,12 +5,12 @@
 // answer, path and counts.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <mutex>
 #include <set>
 #include <thread>
 
 #include "hpcplan/dense/dense_search.hpp"
+#include "support/cancel_handshake.hpp"
 
 namespace {
 
@@ -62,19 +62,11 @@ TEST(DenseThreads, AnotherThreadCancelsARun) {
   GogParams gp;
   const GogField field(4, 48, gp);
   for (const dense::Algorithm a : {dense::Algorithm::bfs, dense::Algorithm::dijkstra}) {
-    std::stop_source source;
-    std::atomic<bool> running{false};
+    test_support::CancelHandshake handshake;
     dense::Query q = corner_query(field, a, 2);
-    q.stop = Stop(source.get_token());
-    q.stop.also_when([&] {
-      running = true;
-      while (!source.stop_requested()) std::this_thread::yield();
-      return false;
-    });
-    std::jthread canceller([&] {
-      while (!running) std::this_thread::yield();
-      source.request_stop();
-    });
+    q.stop = Stop(handshake.token());
+    q.stop.also_when(handshake.condition());
+    const std::jthread canceller = handshake.canceller();
     dense::LocalTransport local;
     const dense::Result r = dense::search(field, q, local);
     EXPECT_EQ(r.status, Status::cancelled);

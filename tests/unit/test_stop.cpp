@@ -19,6 +19,7 @@
 #include "hpcplan/search/best_first.hpp"
 #include "hpcplan/search/dense_visited_map.hpp"
 #include "hpcplan/tree/rrt_star.hpp"
+#include "support/cancel_handshake.hpp"
 #include "support/path_checks.hpp"
 
 namespace hpcplan {
@@ -57,24 +58,13 @@ TEST(Stop, AnotherThreadCancelsAGridSearchWithinOneExpansion) {
   o.algorithm = GridAlgorithm::dijkstra;
   o.engine = GridEngine::sparse;  // the best-first loop's poll (test_dense_engine.cpp: dense)
   o.max_states = 50'000'000;      // a guard: the test must never fill the machine
-  std::stop_source source;
-  o.cancel = source.get_token();
-  std::atomic<bool> running{false};
-  int calls = 0;
-  o.stop_when = [&] {
-    if (++calls == 3) {
-      running = true;
-      while (!source.stop_requested()) std::this_thread::yield();
-    }
-    return false;
-  };
-  std::jthread canceller([&] {
-    while (!running) std::this_thread::yield();
-    source.request_stop();
-  });
+  test_support::CancelHandshake handshake;
+  o.cancel = handshake.token();
+  o.stop_when = handshake.condition(3);
+  const std::jthread canceller = handshake.canceller();
   const GridReport r = solve_grid(p, o);
   ASSERT_EQ(r.result.status, Status::cancelled);
-  EXPECT_EQ(calls, 3);  // not polled again: the token ended it first
+  EXPECT_EQ(handshake.calls(), 3);  // not polled again: the token ended it first
   EXPECT_TRUE(r.result.path.empty());
   // Three condition calls are 192 polls; one poll per expansion, and the next one stops it.
   EXPECT_GT(r.result.counters.expanded, 0u);
