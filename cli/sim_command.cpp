@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +21,7 @@
 #include "hpcplan/sim/simulator.hpp"
 #include "hpcplan/sph/presets.hpp"
 #include "number_options.hpp"
+#include "output_paths.hpp"
 #include "vtk_dir.hpp"
 
 namespace hpcplan::cli {
@@ -85,13 +85,12 @@ int run(SimArgs& a) {
                        std::to_string(done.result.runs.size()) + " runs, past --runs " +
                        std::to_string(o.runs));
   }
-  if (!a.checkpoint.empty()) {
-    require_writable_destination(a.checkpoint, "--checkpoint");
-    for (const std::string* other : {&a.csv, &a.replan_log, &a.trajectory, &a.output})
-      if (!other->empty() && std::filesystem::weakly_canonical(*other) ==
-                                 std::filesystem::weakly_canonical(a.checkpoint))
-        throw InputError("--checkpoint '" + a.checkpoint + "' is also another output's file");
-  }
+  if (!a.checkpoint.empty()) require_writable_destination(a.checkpoint, "--checkpoint");
+  require_distinct_outputs({{&a.checkpoint, "--checkpoint"},
+                            {&a.csv, "--csv"},
+                            {&a.replan_log, "--replan-log"},
+                            {&a.trajectory, "--trajectory"},
+                            {&a.output, "--output"}});
   if (!a.vtk_dir.empty()) prepare_vtk_dir(a.vtk_dir);
   if (a.threads > 0) omp_set_num_threads(a.threads);
 
@@ -119,6 +118,7 @@ int run(SimArgs& a) {
   // SLURM's warning signal (or SIGTERM, Ctrl-C) ends the invocation after the current frame:
   // the run under way is dropped, the finished ones are in the checkpoint (core/interrupt.hpp).
   interrupt::install();
+  int runs_made = 0;  // by this invocation
   const Stopwatch clock;
   inv.result = sim::run_simulation(
       o,
@@ -127,6 +127,7 @@ int run(SimArgs& a) {
           std::fprintf(stderr, "run %d/%d: %s after %.1f s simulated (%.1f s wall)\n", r.run_number,
                        o.runs, std::string(sim::to_string(r.end)).c_str(), r.sim_time_s,
                        r.wall_time_s);
+        ++runs_made;
         if (!a.checkpoint.empty())
           write_file_atomically(a.checkpoint,
                                 io::encode_sim_checkpoint({options, so_far, trajectory}));
@@ -141,8 +142,9 @@ int run(SimArgs& a) {
     });
   }
   inv.seconds = clock.seconds();
-  // (Also when a restart had no run left to make: the new checkpoint still names every run.)
-  if (!a.checkpoint.empty())
+  // The last run's checkpoint already holds every run; but a restart with no run left to make
+  // has written none, and its new checkpoint must still name them all.
+  if (!a.checkpoint.empty() && runs_made == 0)
     write_file_atomically(a.checkpoint,
                           io::encode_sim_checkpoint({options, inv.result, trajectory}));
 
@@ -264,11 +266,7 @@ Action register_sim_command(CLI::App& app) {
                   "After every run, write the runs so far to this file (atomically)");
   cmd->add_option("--restart", a.restart,
                   "Keep the runs saved in this checkpoint and make the rest (same options)");
-  // An empty path (an unset shell variable) is refused, not taken as "no checkpoint".
-  for (const char* name : {"--checkpoint", "--restart"})
-    cmd->get_option(name)->check([](const std::string& v) {
-      return v.empty() ? std::string("an empty path") : std::string();
-    });
+  refuse_empty_paths(cmd, {"--checkpoint", "--restart"});
   return [args](const Context& context) {
     if (context.comm && context.comm->size() > 1)
       throw InputError(

@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -24,6 +23,7 @@
 #include "hpcplan/sph/presets.hpp"
 #include "hpcplan/sph/run.hpp"
 #include "number_options.hpp"
+#include "output_paths.hpp"
 #include "vtk_dir.hpp"
 
 namespace hpcplan::cli {
@@ -80,18 +80,10 @@ int run(const SphArgs& a) {
                        std::to_string(a.frames));
   }
   if (!a.checkpoint.empty()) require_writable_destination(a.checkpoint, "--checkpoint");
-  // One file, one content: no output may overwrite another.
-  const std::pair<const std::string*, const char*> outputs[] = {{&a.checkpoint, "--checkpoint"},
-                                                                {&a.output, "--output"},
-                                                                {&a.front_csv, "--front-csv"},
-                                                                {&a.gauges_csv, "--gauges-csv"}};
-  for (std::size_t i = 0; i < std::size(outputs); ++i)
-    for (std::size_t j = i + 1; j < std::size(outputs); ++j)
-      if (!outputs[i].first->empty() && !outputs[j].first->empty() &&
-          std::filesystem::weakly_canonical(*outputs[i].first) ==
-              std::filesystem::weakly_canonical(*outputs[j].first))
-        throw InputError(std::string(outputs[i].second) + " '" + *outputs[i].first +
-                         "' is also another output's file (" + outputs[j].second + ")");
+  require_distinct_outputs({{&a.checkpoint, "--checkpoint"},
+                            {&a.output, "--output"},
+                            {&a.front_csv, "--front-csv"},
+                            {&a.gauges_csv, "--gauges-csv"}});
   sph::check_backend_name(a.backend);
   // The memory budget: an explicit one, else half of what the machine has available.
   const std::uint64_t need = sph::estimated_bytes(o);
@@ -144,6 +136,14 @@ int run(const SphArgs& a) {
     watch = [&probes](const sph::FluidState& s) { sph::record_probes(s, probes); };
     if (!restart) watch(fluid.state());
   }
+  // The whole state at the end of `frame`, atomically, if it is sound (a frame that ended
+  // unsound stops the run: the last checkpoint stays the last sound one).
+  auto save_checkpoint = [&](std::uint64_t frame) {
+    if (a.checkpoint.empty() || !sph::first_problem(fluid.full_state()).empty()) return false;
+    write_file_atomically(a.checkpoint,
+                          sph::encode_checkpoint(o, frame, fluid.full_state(), probes.rows));
+    return true;
+  };
   // SLURM's warning signal (or SIGTERM, Ctrl-C) ends the run at the next frame's end, with its
   // checkpoint, so that a requeued job continues with --restart (core/interrupt.hpp).
   interrupt::install();
@@ -153,25 +153,17 @@ int run(const SphArgs& a) {
       [&](std::uint64_t frame, const sph::FluidState&) {
         if (vtk && (frame % a.every == 0 || frame == a.frames))
           vtk->write(frame, fluid.full_state());
-        // A checkpoint every K frames and at the end, of a sound state only (a frame that ended
-        // unsound stops the run: the last checkpoint stays the last sound one).
-        if (!a.checkpoint.empty() && (frame % a.checkpoint_every == 0 || frame == a.frames) &&
-            sph::first_problem(fluid.full_state()).empty())
-          write_file_atomically(a.checkpoint,
-                                sph::encode_checkpoint(o, frame, fluid.full_state(), probes.rows));
+        if (frame % a.checkpoint_every == 0 || frame == a.frames) save_checkpoint(frame);
       },
       watch, [] { return interrupt::requested() != 0; });
   if (info.report.interrupted) {
     info.interrupted_by = interrupt::name(interrupt::requested());
-    if (!a.checkpoint.empty() && sph::first_problem(fluid.full_state()).empty()) {
-      write_file_atomically(a.checkpoint, sph::encode_checkpoint(o, fluid.frames_done(),
-                                                                 fluid.full_state(), probes.rows));
+    // (At a multiple of --checkpoint-every this frame's checkpoint is already written.)
+    const std::uint64_t frame = fluid.frames_done();
+    if (frame % a.checkpoint_every == 0 ? !a.checkpoint.empty() : save_checkpoint(frame))
       info.checkpoint = a.checkpoint;
-    }
   }
-  if (restart && !a.checkpoint.empty() && restart->frame == a.frames)
-    write_file_atomically(a.checkpoint,
-                          sph::encode_checkpoint(o, a.frames, fluid.full_state(), probes.rows));
+  if (restart && restart->frame == a.frames) save_checkpoint(a.frames);
   if (restart) info.restarted_at_frame = restart->frame;
   info.seconds = clock.seconds();
   info.summary = sph::summarise(fluid.full_state());
@@ -228,11 +220,7 @@ Action register_sph_command(CLI::App& app) {
   for (const char* name : {"--preset", "--scenario", "--particles", "--seed"})
     a.problem_options.push_back(cmd->get_option(name));
   cmd->add_option("--output", a.output, "Also write the JSON result to this file (atomically)");
-  // An empty path (an unset shell variable) is refused, not taken as "none".
-  for (const char* name : {"--checkpoint", "--restart", "--front-csv", "--gauges-csv", "--output"})
-    cmd->get_option(name)->check([](const std::string& v) {
-      return v.empty() ? std::string("an empty path") : std::string();
-    });
+  refuse_empty_paths(cmd, {"--checkpoint", "--restart", "--front-csv", "--gauges-csv", "--output"});
   return [args](const Context& context) {
     if (context.comm && context.comm->size() > 1)
       throw InputError("hpcplan sph runs in one process (OpenMP threads); start it without mpirun");

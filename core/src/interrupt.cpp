@@ -24,7 +24,9 @@ void install() {
     struct sigaction action {};
     action.sa_handler = record;
     sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESTART;  // system calls in flight (a file being written) carry on
+    // SA_RESTART: system calls in flight (a file being written) carry on; SA_RESETHAND: the
+    // next such signal has its default action (the escape from a run that will not stop).
+    action.sa_flags = SA_RESTART | SA_RESETHAND;
     for (const int s : {SIGUSR1, SIGTERM, SIGINT}) sigaction(s, &action, nullptr);
     return true;
   }();

@@ -50,10 +50,6 @@ std::vector<double> fingerprint(const FluidParams& f) {
 
 }  // namespace
 
-std::string_view checkpoint_version() {
-  return checkpoint::version();
-}
-
 std::string encode_checkpoint(const FluidOptions& o, std::uint64_t frame, const FluidState& s,
                               const std::vector<std::vector<double>>& probe_rows) {
   Writer w;
@@ -114,7 +110,11 @@ FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& nam
   for (std::size_t k = 0; k < built_params.size(); ++k)
     if (!(saved_params[k] == built_params[k]))
       p.fail("was computed with other fluid parameters (another build's physics or presets)");
-  const FluidState built = s;  // the walls as they are built, to check the saved ones against
+  // The walls as they are built (by id), to check the saved ones against: the flags and
+  // positions only, not a copy of the whole state.
+  const std::vector<std::uint8_t> built_wall = s.particles.wall;
+  const std::vector<double> built_x = s.particles.x, built_y = s.particles.y,
+                            built_z = s.particles.z;
   s.time = p.get<double>();
   s.substeps = p.get<std::uint64_t>();
   const auto fluid = p.get<std::uint64_t>();
@@ -165,10 +165,9 @@ FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& nam
     const std::uint32_t id = s.particles.id[k];
     if (id >= n || seen[id]) p.fail("holds particle ids that are not a permutation (damaged)");
     seen[id] = 1;
-    const Particles& b = built.particles;
-    if (s.particles.wall[k] != b.wall[id] ||
-        (b.wall[id] && (s.particles.x[k] != b.x[id] || s.particles.y[k] != b.y[id] ||
-                        s.particles.z[k] != b.z[id])))
+    if (s.particles.wall[k] != built_wall[id] ||
+        (built_wall[id] && (s.particles.x[k] != built_x[id] || s.particles.y[k] != built_y[id] ||
+                            s.particles.z[k] != built_z[id])))
       p.fail("holds walls other than its problem's (another build's walls, or damaged)");
   }
   return c;

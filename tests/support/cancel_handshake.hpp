@@ -25,10 +25,12 @@ class CancelHandshake {
     };
   }
   std::stop_token token() const { return source_.get_token(); }
-  // A thread that cancels once the run has said that it is under way.
+  // A thread that cancels once the run has said that it is under way. If the run ends without
+  // saying so (it finished first: the test then fails on its status), the thread's own stop,
+  // requested when it is joined, releases it instead of hanging the test.
   std::jthread canceller() {
-    return std::jthread([this] {
-      while (!running_) std::this_thread::yield();
+    return std::jthread([this](std::stop_token joined) {
+      while (!running_ && !joined.stop_requested()) std::this_thread::yield();
       source_.request_stop();
     });
   }

@@ -11,13 +11,14 @@
 namespace hpcplan::interrupt {
 
 // Installs the handlers (once; later calls do nothing). Until then the signals keep their
-// default actions.
+// default actions, and each handler restores its signal's default action once it has run, so
+// a second Ctrl-C (or SIGTERM) ends a run that is slow to reach its next boundary at once.
 void install();
 
 // The signal that asked the run to end (SIGUSR1, SIGTERM or SIGINT), 0 while none has.
 int requested();
 
-// "SIGUSR1", "SIGTERM", "SIGINT", or the number.
+// "SIGUSR1", "SIGTERM", "SIGINT", or "a signal".
 const char* name(int signal);
 
 }  // namespace hpcplan::interrupt

@@ -3,7 +3,6 @@
 // summary, and a scenario's probe rows (the dam break's front, the MARIN gauges) as CSV.
 #include <cstdint>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>

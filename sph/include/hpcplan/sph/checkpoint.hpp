@@ -52,7 +52,4 @@ FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& nam
 // Reads and decodes a file: InputError if it cannot be read, as decode_checkpoint otherwise.
 FluidCheckpoint read_checkpoint(const std::string& path);
 
-// The version written into checkpoints (a checkpoint of another is refused).
-std::string_view checkpoint_version();
-
 }  // namespace hpcplan::sph
