@@ -9,6 +9,8 @@
 #include "commands.hpp"
 #include "hpcplan/core/atomic_file.hpp"
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/core/interrupt.hpp"
+#include "hpcplan/dense/dense_checkpoint.hpp"
 #include "hpcplan/distributed/grid_planner_mpi.hpp"
 #include "hpcplan/io/grid_report_json.hpp"
 #include "hpcplan/io/rank_simulation_json.hpp"
@@ -123,6 +125,19 @@ Action register_grid_command(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str()
       ->group(mpi);
+  const char* ckpt = "Checkpoints (dense engine: --algo bfs or dijkstra)";
+  cmd->add_option("--checkpoint", args->options.checkpoint,
+                  "Write the search's state to FILE (FILE.r<rank> per rank under mpirun) at a "
+                  "level or bucket boundary: every --checkpoint-every seconds, and on SIGUSR1, "
+                  "SIGTERM or Ctrl-C, which then end the run (status interrupted, exit 0)")
+      ->group(ckpt);
+  add_number(cmd, "--checkpoint-every", args->options.checkpoint_every_s,
+             "Seconds between checkpoints (0: only when interrupted)", 0, 1e9)
+      ->capture_default_str()
+      ->group(ckpt);
+  cmd->add_option("--restart", args->options.restart,
+                  "Continue from the checkpoint FILE of the same problem, ranks and threads")
+      ->group(ckpt);
   cmd->add_flag("--path", args->options.keep_path, "Include the path");
   cmd->add_flag("--json", args->json, "Print one JSON object instead of a summary");
   cmd->add_option("--output", args->output, "Also write the JSON result to this file (atomically)");
@@ -157,6 +172,15 @@ Action register_grid_command(CLI::App& app) {
     distributed::validate(a.dist, a.problem.extent, context.comm ? context.comm->size() : 1,
                           a.problem.dims);
     if (!a.output.empty()) require_writable_destination(a.output, "--output");
+    const int rank = context.comm ? context.comm->rank() : 0;
+    const int ranks = context.comm ? context.comm->size() : 1;
+    if (!a.options.checkpoint.empty()) {
+      require_writable_destination(dense::rank_file(a.options.checkpoint, rank, ranks),
+                                   "--checkpoint");
+      // Only where a checkpoint is written does a signal have somewhere to save the run.
+      interrupt::install();
+      a.options.interrupted = [] { return interrupt::requested() != 0; };
+    }
 
     if (!a.simulate_ranks.empty()) {
       if (context.comm && context.comm->size() > 1)
@@ -175,10 +199,15 @@ Action register_grid_command(CLI::App& app) {
         std::fputs((to_summary(sim.serial) + to_summary(sim)).c_str(), stdout);
       return kExitOk;
     }
-    const GridReport report = context.comm ? distributed::solve_grid_distributed(
-                                                 a.problem, a.options, a.dist, *context.comm)
-                                           : solve_grid(a.problem, a.options);
+    GridReport report = context.comm ? distributed::solve_grid_distributed(a.problem, a.options,
+                                                                           a.dist, *context.comm)
+                                     : solve_grid(a.problem, a.options);
     if (!context.is_root()) return kExitOk;
+    report.restarted_from = a.options.restart;
+    if (report.result.status == Status::interrupted) {
+      report.interrupted_by = interrupt::name(interrupt::requested());
+      report.checkpoint = a.options.checkpoint;
+    }
     const std::string json = to_json(report, a.options.keep_path).dump() + "\n";
     if (!a.output.empty()) write_file_atomically(a.output, json);
     if (a.json)

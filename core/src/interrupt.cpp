@@ -24,10 +24,15 @@ void install() {
     struct sigaction action {};
     action.sa_handler = record;
     sigemptyset(&action.sa_mask);
-    // SA_RESTART: system calls in flight (a file being written) carry on; SA_RESETHAND: the
-    // next such signal has its default action (the escape from a run that will not stop).
+    // SA_RESTART: system calls in flight (a file being written) carry on. SA_RESETHAND for
+    // SIGTERM and Ctrl-C: the next one has its default action (the escape from a run that will
+    // not stop). Not for SIGUSR1, which a job may well receive twice for one warning (from
+    // SLURM directly and forwarded by mpirun or the batch shell): a second one is only a
+    // repeat of the request.
+    action.sa_flags = SA_RESTART;
+    sigaction(SIGUSR1, &action, nullptr);
     action.sa_flags = SA_RESTART | SA_RESETHAND;
-    for (const int s : {SIGUSR1, SIGTERM, SIGINT}) sigaction(s, &action, nullptr);
+    for (const int s : {SIGTERM, SIGINT}) sigaction(s, &action, nullptr);
     return true;
   }();
   (void)installed;

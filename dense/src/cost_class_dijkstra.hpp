@@ -8,10 +8,12 @@
 // sub-slab, an outbox. Then one exchange and one reduction (the next bucket is the floor of the
 // smallest pending class anywhere; the goal settled; nothing left; a stop). A run ends with the
 // bucket that settles the goal, processed whole, so its counts do not depend on the number of
-// ranks or threads.
+// ranks or threads. The same reduction says when to write a checkpoint (dense_checkpoint.hpp),
+// after the bucket's outboxes are filed.
 #include <limits>
 #include <map>
 
+#include "engine_checkpoint.hpp"
 #include "engine_common.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/dense/zeroed_words.hpp"
@@ -90,20 +92,28 @@ class CostClassDijkstra {
     const std::uint64_t start_tile = layout_.tile_of(q_.start);
     goal_tile_ = layout_.tile_of(q_.goal);
     goal_bit_ = Word{1} << layout_.bit_of(q_.goal);
-    if (slabs_.of_tile(start_tile).rank == slabs_.rank) {
+    Totals totals;
+    const Checkpointing& cp = q_.checkpointing;
+    const std::string identity =
+        cp.path.empty() && cp.restart.empty() ? "" : run_identity(field_, q_, slabs_);
+    if (!cp.restart.empty()) {
+      agree_on_restart(tr_, [&] { restore(identity, totals); });
+    } else if (slabs_.of_tile(start_tile).rank == slabs_.rank) {
       Thread& th = threads_[slabs_.of_tile(start_tile).thread];
       th.pending[ClassKey{}].push_back({start_tile, Word{1} << layout_.bit_of(q_.start)});
     }
     const std::uint64_t fixed = settled_.bytes() + keys_.bytes() + windows_.bytes();
 
     DenseProgress progress(q_.progress_label, q_.progress_after_s, free_states_);
-    double bucket = 0.0;
-    std::uint64_t buckets = 0, settled_total = 0, peak_pending = 1;
+    CheckpointSchedule schedule(cp);
+    double& bucket = totals.bucket;
+    std::uint64_t &buckets = totals.buckets, &settled_total = totals.settled,
+                  &peak_pending = totals.peak_pending, &list_peak = totals.list_peak;
     Status status = Status::no_path;
     bool solved = false, done = false;
+    int save = 0;  // after this bucket: kSave, kSaveAndEnd or 0 (from the master thread)
     HaloSwap<ClassEntry> halo;
     const std::uint64_t budget = q_.memory_budget;
-    std::uint64_t list_peak = 0;
 
     int team = T;
     bool failed = false;
@@ -175,7 +185,7 @@ class CostClassDijkstra {
 #pragma omp master
           {
             try {
-              std::uint64_t maxes[2] = {0, 0};
+              std::uint64_t maxes[3] = {0, 0, static_cast<std::uint64_t>(schedule.due())};
               std::uint64_t sums[2] = {0, 0};
               double next = std::numeric_limits<double>::infinity();
               std::uint64_t lists = 0;
@@ -209,6 +219,7 @@ class CostClassDijkstra {
                 done = true;
               } else {
                 bucket = std::floor(next);
+                save = static_cast<int>(maxes[2]);
               }
               progress.update("cost", bucket, settled_total);
             } catch (...) {
@@ -223,6 +234,25 @@ class CostClassDijkstra {
           me.out_down.clear();
           me.out_up.clear();
           for (auto& box : me.out_local) box.clear();
+          if (save) {
+            // Every thread has filed what it was sent: the bucket's state is whole.
+#pragma omp barrier
+#pragma omp master
+            {
+              try {
+                save_state(identity, totals);
+              } catch (...) {
+                caught(threads_.front());  // rethrown after the region
+                done = true;
+              }
+              if (save == kSaveAndEnd) {
+                status = Status::interrupted;
+                done = true;
+              }
+              save = 0;
+            }
+#pragma omp barrier
+          }
         }
     }
 
@@ -329,6 +359,60 @@ class CostClassDijkstra {
       return it->second;
     }
   };
+
+  // The run's figures that carry over a boundary.
+  struct Totals {
+    double bucket = 0.0;
+    std::uint64_t buckets = 0, settled = 0, peak_pending = 1, list_peak = 0;
+  };
+
+  // The state after the last bucket (dense_checkpoint.hpp), into this rank's checkpoint file.
+  void save_state(const std::string& identity, const Totals& totals) const {
+    checkpoint::Writer w;
+    w.put(totals);
+    w.put_array(std::span<const Word>(settled_.data(), settled_.size()));
+    w.put_array(std::span<const Word>(keys_.data(), keys_.size()));
+    for (const Thread& t : threads_) {
+      w.put(t.settled);
+      w.put(t.generated);
+      w.put_array(t.processed);
+      w.put<std::uint64_t>(t.pending.size());
+      for (const auto& [key, list] : t.pending) {
+        w.put(key);
+        w.put_array(list);
+      }
+    }
+    write_checkpoint(q_.checkpointing.path, identity, w.bytes());
+  }
+
+  // The state saved by save_state(), from this rank's --restart file: InputError if refused.
+  void restore(const std::string& identity, Totals& totals) {
+    const std::string& path = q_.checkpointing.restart;
+    const std::string file = read_checkpoint_file(path);
+    checkpoint::Reader r(open_checkpoint(file, path, identity), path);
+    totals = r.get<Totals>();
+    r.get_array(std::span<Word>(settled_.data(), settled_.size()));
+    r.get_array(std::span<Word>(keys_.data(), keys_.size()));
+    for (Thread& t : threads_) {
+      t.settled = t.reported = r.get<std::uint64_t>();
+      t.generated = r.get<std::uint64_t>();
+      // (The merge windows start empty, so no epoch of theirs needs restoring.)
+      r.get_array(t.processed);
+      const auto classes = r.get<std::uint64_t>();
+      for (std::uint64_t c = 0; c < classes; ++c) {
+        const auto key = r.get<ClassKey>();
+        if (key.ones < 0 || key.root2 < 0 || key.root3 < 0 || key.hops < 0 || t.pending.count(key))
+          r.fail("lists a class twice or a negative cost (damaged)");
+        std::vector<Entry>& list = t.pending[key];
+        r.get_array(list);
+        for (const Entry& e : list)
+          if (e.tile >= layout_.tile_count() || slabs_.of_tile(e.tile).rank != slabs_.rank ||
+              slabs_.of_tile(e.tile).thread != t.id)
+            r.fail("lists a pending tile this thread does not hold (damaged)");
+      }
+    }
+    if (r.left() != 0) r.fail("has bytes after its end (damaged)");
+  }
 
   static std::uint64_t list_bytes(const Thread& t) {
     std::uint64_t n = (t.out_down.capacity() + t.out_up.capacity()) * sizeof(ClassEntry);

@@ -10,9 +10,11 @@
 // ranks and another barrier) each thread applies what the other threads and ranks sent it and
 // publishes its level's counts. One decision per level: goal reached, nothing left (no_path),
 // or a stop; taken by every thread from the published counts after one more barrier on one
-// rank, by one reduction over the ranks otherwise.
+// rank, by one reduction over the ranks otherwise. The same decision says when to write a
+// checkpoint (dense_checkpoint.hpp), after the level's lists are swapped.
 #include <limits>
 
+#include "engine_checkpoint.hpp"
 #include "engine_common.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/dense/zeroed_words.hpp"
@@ -56,7 +58,16 @@ class LevelBfs {
     goal_bit_ = Word{1} << layout_.bit_of(q_.goal);
     const std::uint64_t start_tile = layout_.tile_of(q_.start);
     const bool trivial = q_.start == q_.goal;
-    if (slabs_.of_tile(start_tile).rank == slabs_.rank) {
+    std::uint64_t level = 0;
+    std::uint64_t reached_total = 1, peak_level = 1;
+    std::uint64_t list_peak = 0;
+    const Checkpointing& cp = q_.checkpointing;
+    const std::string identity =
+        cp.path.empty() && cp.restart.empty() ? "" : run_identity(field_, q_, slabs_);
+    if (!cp.restart.empty()) {
+      agree_on_restart(tr_,
+                       [&] { restore(identity, level, reached_total, peak_level, list_peak); });
+    } else if (slabs_.of_tile(start_tile).rank == slabs_.rank) {
       const Block& b = slabs_.of_tile(start_tile);
       *code_words(b, start_tile) |= Word{1} << layout_.bit_of(q_.start);  // level 0: code 1
       Thread& th = threads_[b.thread];
@@ -66,13 +77,11 @@ class LevelBfs {
     const std::uint64_t fixed = codes_.bytes() + windows_.bytes() + marks_bytes();
 
     DenseProgress progress(q_.progress_label, q_.progress_after_s, free_states_);
-    std::uint64_t level = 0;
-    std::uint64_t reached_total = 1, peak_level = 1;
+    CheckpointSchedule schedule(cp);
     Status status = Status::no_path;
     bool solved = trivial;
     HaloSwap<Entry> halo;
     const std::uint64_t budget = q_.memory_budget;
-    std::uint64_t list_peak = 0;
 
     int team = T;
     bool failed = false;
@@ -90,7 +99,7 @@ class LevelBfs {
 #pragma omp master
         team = omp_get_num_threads();
       } else if (!trivial)
-        for (std::uint64_t lvl = 0, reached = reached_total, peak = peak_level;;) {
+        for (std::uint64_t lvl = level, reached = reached_total, peak = peak_level;;) {
           const int next_code = static_cast<int>((lvl + 1) % 3) + 1;
           const Word c0 = next_code & 1 ? ~Word{0} : 0, c1 = next_code & 2 ? ~Word{0} : 0;
           try {
@@ -108,8 +117,12 @@ class LevelBfs {
             }
             if (budget && list_bytes(me) * T + fixed > budget)
               me.stop = std::max(me.stop, kStopBudget);
-            // The query's own condition, on the master thread only (Stop's contract).
-            if (id == 0) poll_stop(q_.stop, me);
+            // The query's own condition and the checkpoint schedule, on the master thread only
+            // (Stop's contract).
+            if (id == 0) {
+              poll_stop(q_.stop, me);
+              me.save = schedule.due();
+            }
           } catch (...) {
             caught(me);
           }
@@ -136,7 +149,7 @@ class LevelBfs {
           // it after the next barrier, and this thread writes that slot again only two levels
           // on, after every thread has passed the next level's first barrier.
           Published& pub = me.published[lvl & 1];
-          pub = {me.fresh, me.next.size(), list_bytes(me), me.goal_hit, me.stop};
+          pub = {me.fresh, me.next.size(), list_bytes(me), me.goal_hit, me.stop, me.save};
 #pragma omp barrier
           Decision d;
           if (alone) {
@@ -148,12 +161,17 @@ class LevelBfs {
                 shared = decide(lvl & 1);
                 // One reduction over the ranks: new states, next frontier entries, goal, stop.
                 std::uint64_t sums[2] = {shared.fresh, shared.next};
-                std::uint64_t maxes[2] = {shared.goal ? 1u : 0u,
-                                          static_cast<std::uint64_t>(shared.stop)};
+                std::uint64_t maxes[3] = {shared.goal ? 1u : 0u,
+                                          static_cast<std::uint64_t>(shared.stop),
+                                          static_cast<std::uint64_t>(shared.save)};
                 tr_.sum(sums);
                 tr_.max(maxes);
-                shared = {sums[0], sums[1], shared.lists, maxes[0] != 0,
-                          static_cast<int>(maxes[1])};
+                shared = {sums[0],
+                          sums[1],
+                          shared.lists,
+                          maxes[0] != 0,
+                          static_cast<int>(maxes[1]),
+                          static_cast<int>(maxes[2])};
               } catch (...) {
                 caught(threads_.front());
                 shared.stop = kStopFailed;  // the reduction itself failed
@@ -195,6 +213,22 @@ class LevelBfs {
           me.fresh = 0;
           std::swap(me.cur, me.next);
           me.next.clear();
+          if (d.save) {
+            // Every thread's frontier is in place: the level's state is whole.
+#pragma omp barrier
+#pragma omp master
+            try {
+              save(identity, lvl, reached, peak, list_peak);
+            } catch (...) {
+              caught(threads_.front());  // ends the run (rethrown after the region)
+            }
+#pragma omp barrier
+            if (d.save == kSaveAndEnd) {
+#pragma omp master
+              status = Status::interrupted;
+              break;
+            }
+          }
         }
     }
     rethrow_failure(threads_, team, failed);
@@ -238,11 +272,13 @@ class LevelBfs {
     std::uint64_t fresh = 0, next = 0, lists = 0;
     bool goal = false;
     int stop = 0;
+    int save = 0;  // the master thread's: kSave, kSaveAndEnd or 0
   };
   struct Decision {
     std::uint64_t fresh = 0, next = 0, lists = 0;  // sums over the threads
     bool goal = false;
     int stop = 0;  // the highest stop code
+    int save = 0;  // a checkpoint after this level: kSave, or kSaveAndEnd
   };
   // The threads' summaries of one level (slot = the level's parity), combined.
   Decision decide(int slot) const {
@@ -254,6 +290,7 @@ class LevelBfs {
       d.lists += p.lists;
       d.goal = d.goal || p.goal;
       d.stop = std::max(d.stop, p.stop);
+      d.save = std::max(d.save, p.save);
     }
     return d;
   }
@@ -268,8 +305,51 @@ class LevelBfs {
     std::uint64_t expanded = 0, generated = 0, fresh = 0;
     bool goal_hit = false;
     int stop = 0;            // kStop* code, the highest wins
+    int save = 0;            // the master thread's checkpoint schedule at this level
     Published published[2];  // by level parity
   };
+
+  // The state after `level` levels (dense_checkpoint.hpp), into this rank's checkpoint file.
+  void save(const std::string& identity, std::uint64_t level, std::uint64_t reached,
+            std::uint64_t peak, std::uint64_t list_peak) const {
+    checkpoint::Writer w;
+    w.put(level);
+    w.put(reached);
+    w.put(peak);
+    w.put(list_peak);
+    w.put_array(std::span<const Word>(codes_.data(), codes_.size()));
+    for (const Thread& t : threads_) {
+      w.put(t.expanded);
+      w.put(t.generated);
+      w.put_array(t.cur);  // the next level's frontier, with the bits before this level
+    }
+    write_checkpoint(q_.checkpointing.path, identity, w.bytes());
+  }
+
+  // The state saved by save(), from this rank's --restart file: InputError if it is refused.
+  void restore(const std::string& identity, std::uint64_t& level, std::uint64_t& reached,
+               std::uint64_t& peak, std::uint64_t& list_peak) {
+    const std::string& path = q_.checkpointing.restart;
+    const std::string file = read_checkpoint_file(path);
+    checkpoint::Reader r(open_checkpoint(file, path, identity), path);
+    level = r.get<std::uint64_t>();
+    reached = r.get<std::uint64_t>();
+    peak = r.get<std::uint64_t>();
+    list_peak = r.get<std::uint64_t>();
+    r.get_array(std::span<Word>(codes_.data(), codes_.size()));
+    for (Thread& t : threads_) {
+      t.expanded = r.get<std::uint64_t>();
+      t.generated = r.get<std::uint64_t>();
+      r.get_array(t.cur);
+      for (const Entry& e : t.cur) {
+        if (e.tile >= layout_.tile_count() || slabs_.of_tile(e.tile).rank != slabs_.rank ||
+            slabs_.of_tile(e.tile).thread != t.id)
+          r.fail("lists a frontier tile this thread does not hold (damaged)");
+      }
+      // (The frontier's marks need no restoring: every level starts by clearing them.)
+    }
+    if (r.left() != 0) r.fail("has bytes after its end (damaged)");
+  }
 
   Word* code_words(const Block& b, std::uint64_t tile) {
     return codes_.data() + 2 * (b.store + (tile - b.lo));

@@ -161,6 +161,7 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
     agreed.threads = static_cast<int>(v[1]);
   }
   const bool dense = uses_dense_engine(field, agreed, report, comm.size());
+  require_dense_for_checkpoints(options, dense);
 
   if (dist.compare_serial) {
     if (comm.rank() == 0) {
@@ -171,6 +172,9 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
       GridSearchOptions serial_options = options;
       serial_options.jump_points = false;
       serial_options.threads = 1;
+      serial_options.checkpoint.clear();  // the reference neither writes nor reads them
+      serial_options.restart.clear();
+      serial_options.checkpoint_every_s = 0.0;
       // The dense engine's serial reference holds the whole lattice in one process: where
       // that is over the budget there is no reference (rather than rank 0 failing alone, or
       // a reference from the other engine).

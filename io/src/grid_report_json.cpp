@@ -106,6 +106,9 @@ nlohmann::json to_json(const GridReport& report, bool include_path) {
   const GridResult& r = report.result;
   nlohmann::json j;
   j["status"] = std::string(search::to_string(r.status));
+  if (!report.interrupted_by.empty()) j["interrupted_by"] = report.interrupted_by;
+  if (!report.checkpoint.empty()) j["checkpoint"] = report.checkpoint;
+  if (!report.restarted_from.empty()) j["restarted_from"] = report.restarted_from;
   j["dims"] = p.dims;
   j["algo"] = o.algorithm;
   j["weight"] = o.weight;
@@ -182,7 +185,11 @@ std::string to_summary(const GridReport& report) {
   o << line;
   o << "  start      " << coords(p.start) << (p.start_adjusted ? " (adjusted)" : "") << "\n";
   o << "  goal       " << coords(p.goal) << (p.goal_adjusted ? " (adjusted)" : "") << "\n";
-  o << "  status     " << search::to_string(r.status) << "\n";
+  o << "  status     " << search::to_string(r.status);
+  if (!report.interrupted_by.empty())
+    o << " by " << report.interrupted_by << "; continue with --restart " << report.checkpoint;
+  o << "\n";
+  if (!report.restarted_from.empty()) o << "  restarted  from " << report.restarted_from << "\n";
   if (r.status == search::Status::solved) {
     std::snprintf(line, sizeof line, "  cost       %.4f over %llu moves, quality %.4f\n", r.cost,
                   static_cast<unsigned long long>(r.hops), r.quality);

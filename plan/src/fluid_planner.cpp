@@ -117,6 +117,7 @@ std::string_view failure_reason(Status status, BlockedEnd blocked) {
     case Status::timeout:
       return "budget";
     case Status::cancelled:
+    case Status::interrupted:
       return "cancelled";
   }
   return "disconnected";

@@ -34,7 +34,9 @@ GridReport solve_grid(const GogField& field, const GridProblem& problem,
   {
     Stopwatch setup;
     GridReport report = prepare_grid_report(problem, options, field, 1);
-    if (uses_dense_engine(field, options, report, 1)) {
+    const bool dense = uses_dense_engine(field, options, report, 1);
+    require_dense_for_checkpoints(options, dense);
+    if (dense) {
       report.result.setup_ms = setup.milliseconds();
       dense::LocalTransport local;
       run_dense(field, problem, options, local, 1, report);
@@ -75,6 +77,8 @@ dense::Query dense_query(const GogField&, const GridProblem& problem, const Grid
   q.stop = Stop::after(o.time_limit_s, o.cancel);
   if (o.stop_when) q.stop.also_when(o.stop_when);
   q.progress_label = "hpcplan grid " + report.options.algorithm + " (dense)";
+  q.checkpointing.every_s = o.checkpoint_every_s;
+  q.checkpointing.interrupted = o.interrupted;
   return q;
 }
 
@@ -118,6 +122,12 @@ void run_dense(const GogField& field, const GridProblem& problem, const GridSear
                dense::SlabTransport& transport, int ranks_sharing_memory, GridReport& report) {
   dense::Query q = dense_query(field, problem, options, report, ranks_sharing_memory);
   if (transport.rank() != 0) q.progress_label.clear();  // one progress line per job
+  if (!options.checkpoint.empty())
+    q.checkpointing.path =
+        dense::rank_file(options.checkpoint, transport.rank(), transport.ranks());
+  if (!options.restart.empty())
+    q.checkpointing.restart =
+        dense::rank_file(options.restart, transport.rank(), transport.ranks());
   dense::Result r = dense::search(field, q, transport);
   GridResult& out = report.result;
   out.status = r.status;

@@ -162,6 +162,22 @@ void validate(const GridProblem& p, const GridSearchOptions& o) {
     throw InputError("--slab-layers must be 0 (automatic) or a number of layers");
   if (o.threads < 0 || o.threads > 4096)
     throw InputError("--threads must be in [0, 4096], got " + std::to_string(o.threads));
+  if (!(o.checkpoint_every_s >= 0.0) || !std::isfinite(o.checkpoint_every_s))
+    throw InputError("--checkpoint-every must be a non-negative number of seconds");
+  if (o.checkpoint_every_s > 0.0 && o.checkpoint.empty())
+    throw InputError("--checkpoint-every needs --checkpoint FILE");
+  if ((!o.checkpoint.empty() || !o.restart.empty()) && o.algorithm != GridAlgorithm::bfs &&
+      o.algorithm != GridAlgorithm::dijkstra)
+    throw InputError(
+        "--checkpoint and --restart need the dense engine: --algo bfs or dijkstra (A* and "
+        "weighted A* end in seconds to minutes and are not checkpointed)");
+}
+
+void require_dense_for_checkpoints(const GridSearchOptions& o, bool dense) {
+  if (dense || (o.checkpoint.empty() && o.restart.empty())) return;
+  throw InputError(
+      "--checkpoint and --restart need the dense engine, and this run would use the sparse "
+      "one; give --engine dense (or a larger --memory-budget)");
 }
 
 std::vector<int> adjust_to_free(const GogField& field, std::vector<int> state, int direction,

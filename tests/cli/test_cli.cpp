@@ -403,6 +403,7 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
       {"grid --dims 2 --algo bfs", "--threads", "4097"},
       {"grid --dims 2 --algo bfs", "--memory-budget", "18446744073709551616"},
       {"grid --dims 2 --algo bfs", "--slab-layers", "65536"},
+      {"grid --dims 2 --algo bfs --checkpoint ck", "--checkpoint-every", "1e10"},
       {"ompl", "--dims", "11"},
       {"ompl --dims 2", "--time", "3601"},
       {"ompl --dims 2", "--runs", "10001"},
@@ -472,7 +473,7 @@ TEST(Cli, EveryNumericOptionRefusesBadValues) {
     }
   }
   EXPECT_EQ(tried, expected);
-  EXPECT_EQ(all.size(), 77u);  // every numeric option of grid, ompl, sim, sph, map3d, sphere2d
+  EXPECT_EQ(all.size(), 78u);  // every numeric option of grid, ompl, sim, sph, map3d, sphere2d
 }
 
 }  // namespace

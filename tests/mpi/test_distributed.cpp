@@ -11,9 +11,15 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <map>
+#include <memory>
+
+#include <unistd.h>
 
 #include "hpcplan/core/splitmix64.hpp"
+#include "hpcplan/dense/dense_checkpoint.hpp"
 #include "hpcplan/dense/slab_plan.hpp"
 #include "hpcplan/distributed/grid_planner_mpi.hpp"
 #include "hpcplan/mpi/communicator.hpp"
@@ -433,6 +439,91 @@ TEST(DenseSlabs, BytesPerRankAreAboutAShareOfTheSerialFigure) {
 }
 
 // no_path, a stop and an over-budget refusal reach every rank alike.
+// Checkpoints on every rank count: a run interrupted at its k-th boundary on every rank (one
+// file per rank) and restarted, again and again until it ends, gives the uninterrupted
+// answer, path and counts; a restart missing one rank's file is refused on every rank (no rank
+// left waiting), with that rank's name in the message.
+TEST(DenseSlabs, InterruptedAndRestartedRunsGiveTheUninterruptedAnswer) {
+  // One folder for the job: rank 0's process id, known to all.
+  const int pid = static_cast<int>(::getpid());
+  const std::vector<std::byte> pids = g_comm->allgather(std::as_bytes(std::span(&pid, 1)));
+  int root_pid = 0;
+  std::memcpy(&root_pid, pids.data(), sizeof root_pid);
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("hpcplan-mpi-ckpt-" + std::to_string(root_pid));
+  if (root()) std::filesystem::create_directories(dir);
+  g_comm->quiet_barrier();
+  SplitMix64 rng(77);
+  int interrupted = 0;
+  for (int d = 2; d <= 4; ++d) {
+    GridProblem p;
+    p.dims = d;
+    p.extent = d == 2 ? 60 : d == 3 ? 20 : 10;
+    p.gog.seed = rng.next();
+    for (const char* algo : {"bfs", "dijkstra"})
+      for (int threads : {1, 2}) {
+        GridSearchOptions o;
+        o.algorithm = parse_grid_algorithm(algo);
+        o.engine = GridEngine::dense;
+        o.keep_path = true;
+        o.threads = threads;
+        const GridReport whole = distributed::solve_grid_distributed(p, o, {}, *g_comm);
+        SCOPED_TRACE(::testing::Message() << "d=" << d << " " << algo << " threads=" << threads
+                                          << " ranks=" << g_comm->size());
+        GridReport r;
+        for (int leg = 0; leg < 1000; ++leg) {
+          auto calls = std::make_shared<int>(0);
+          o.interrupted = [calls] { return ++*calls == 3; };
+          o.checkpoint = (dir / (leg % 2 ? "b" : "a")).string();
+          o.restart = leg == 0 ? "" : (dir / (leg % 2 ? "a" : "b")).string();
+          r = distributed::solve_grid_distributed(p, o, {}, *g_comm);
+          if (r.result.status != search::Status::interrupted) break;
+          ++interrupted;
+        }
+        EXPECT_EQ(r.result.status, whole.result.status);
+        EXPECT_EQ(r.result.cost, whole.result.cost);
+        EXPECT_EQ(r.result.hops, whole.result.hops);
+        EXPECT_EQ(r.result.path, whole.result.path);
+        EXPECT_EQ(r.result.counters.expanded, whole.result.counters.expanded);
+        EXPECT_EQ(r.result.counters.generated, whole.result.counters.generated);
+        EXPECT_EQ(r.result.counters.peak_open, whole.result.counters.peak_open);
+        EXPECT_EQ(r.dense->levels, whole.dense->levels);
+      }
+  }
+  EXPECT_GT(interrupted, 20);
+  // Rank (P - 1)'s file of the last interrupted leg is gone: every rank refuses.
+  if (g_comm->size() > 1) {
+    GridProblem p;
+    p.dims = 3;
+    p.extent = 20;
+    GridSearchOptions o;
+    o.algorithm = GridAlgorithm::bfs;
+    o.engine = GridEngine::dense;
+    o.threads = 1;
+    o.interrupted = [] { return true; };
+    o.checkpoint = (dir / "c").string();
+    ASSERT_EQ(distributed::solve_grid_distributed(p, o, {}, *g_comm).result.status,
+              search::Status::interrupted);
+    g_comm->quiet_barrier();
+    const std::string last = dense::rank_file(o.checkpoint, g_comm->size() - 1, g_comm->size());
+    if (root()) std::filesystem::remove(last);
+    g_comm->quiet_barrier();
+    o.checkpoint.clear();
+    o.interrupted = nullptr;
+    o.restart = (dir / "c").string();
+    try {
+      distributed::solve_grid_distributed(p, o, {}, *g_comm);
+      ADD_FAILURE() << "a restart missing a rank's file was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), "rank " + std::to_string(g_comm->size() - 1) +
+                                           ": --restart '" + last +
+                                           "': is not a readable regular file");
+    }
+  }
+  g_comm->quiet_barrier();
+  if (root()) std::filesystem::remove_all(dir);
+}
+
 TEST(DenseSlabs, NoPathTimeoutAndBudgetAreAgreedByEveryRank) {
   const GridProblem wall = walled_line();
   for (const char* algo : {"bfs", "dijkstra"}) {

@@ -1,12 +1,16 @@
 // The dense lattice engine against the independent oracle (textbook BFS and Dijkstra over
 // coordinate vectors) and against the sparse engine, from 1D to 8D, extents that do not fill
 // the 8 x 8 tiles, 1 to 4 threads (so paths cross sub-slab faces), both connectivities; and
-// its kernel, its slab plan, its budget refusal and its progress line.
+// its kernel, its slab plan, its budget refusal, its progress line and its checkpoints.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
+
+#include <unistd.h>
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/splitmix64.hpp"
@@ -413,6 +417,185 @@ TEST(DenseEngine, StopsWhenCancelled) {
     const dense::Result r = dense::search(field, q, local);
     EXPECT_EQ(r.status, Status::cancelled);
     EXPECT_TRUE(r.path.empty());
+  }
+}
+
+// Checkpoints (dense_checkpoint.hpp): a run interrupted after k levels or buckets, with its
+// checkpoint written there, and restarted from it, ends with the uninterrupted run's answer,
+// path and counts; so does a chain of such restarts, for every k until the run ends.
+class DenseCheckpoint : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("hpcplan-dense-ckpt-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+  std::filesystem::path dir_;
+};
+
+// Asks for the end at its `at`-th call (once per level or bucket).
+std::function<bool()> interrupt_at(int at) {
+  auto calls = std::make_shared<int>(0);
+  return [calls, at] { return ++*calls == at; };
+}
+
+TEST_F(DenseCheckpoint, AnInterruptedRunRestartsToTheSameAnswer) {
+  int interrupted = 0, compared = 0;
+  for (int d = 2; d <= 4; ++d)
+    for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+      const Instance in = random_instance(seed * 7919 + static_cast<std::uint64_t>(d), d);
+      const GogField field(d, in.extent, in.gog);
+      for (const dense::Algorithm a : {dense::Algorithm::bfs, dense::Algorithm::dijkstra})
+        for (int threads : {1, 3}) {
+          const dense::Result whole = run_dense(field, in, a, threads);
+          SCOPED_TRACE(::testing::Message() << "d=" << d << " seed=" << seed << " "
+                                            << (a == dense::Algorithm::bfs ? "bfs" : "dijkstra")
+                                            << " threads=" << threads);
+          // Interrupted at the k-th boundary of each restart, until a restart ends the run.
+          for (int k : {1, 2, 5}) {
+            dense::Query q;
+            q.start = in.start;
+            q.goal = in.goal;
+            q.algorithm = a;
+            q.threads = threads;
+            q.keep_path = true;
+            dense::LocalTransport local;
+            dense::Result r;
+            const std::string one = file("a"), two = file("b");
+            std::filesystem::remove(one);
+            for (int leg = 0; leg < 1000; ++leg) {
+              q.checkpointing.path = leg % 2 ? two : one;
+              q.checkpointing.restart = leg == 0 ? "" : leg % 2 ? one : two;
+              q.checkpointing.interrupted = interrupt_at(k);
+              r = dense::search(field, q, local);
+              if (r.status != Status::interrupted) break;
+              ++interrupted;
+              ASSERT_TRUE(std::filesystem::exists(q.checkpointing.path));
+            }
+            ++compared;
+            expect_same(r, whole, "restarted every " + std::to_string(k) + " boundaries");
+            EXPECT_EQ(r.figures.buckets, whole.figures.buckets);
+            EXPECT_EQ(r.counters.peak_open, whole.counters.peak_open);
+            EXPECT_EQ(r.counters.peak_states, whole.counters.peak_states);
+          }
+        }
+    }
+  EXPECT_EQ(compared, 72);
+  EXPECT_GT(interrupted, 200);  // the runs were cut, many times
+}
+
+// A periodic checkpoint (every boundary here) is the state a killed run left: restarted from
+// the last one written, the run ends as the uninterrupted one.
+TEST_F(DenseCheckpoint, APeriodicCheckpointRestartsToTheSameAnswer) {
+  const Instance in = random_instance(11, 3);
+  const GogField field(3, in.extent, in.gog);
+  for (const dense::Algorithm a : {dense::Algorithm::bfs, dense::Algorithm::dijkstra}) {
+    const dense::Result whole = run_dense(field, in, a, 2);
+    dense::Query q;
+    q.start = in.start;
+    q.goal = in.goal;
+    q.algorithm = a;
+    q.threads = 2;
+    q.keep_path = true;
+    q.checkpointing.path = file("periodic");
+    q.checkpointing.every_s = 1e-9;
+    dense::LocalTransport local;
+    ASSERT_EQ(dense::search(field, q, local).status, whole.status);
+    ASSERT_TRUE(std::filesystem::exists(q.checkpointing.path));
+    q.checkpointing = {};
+    q.checkpointing.restart = file("periodic");
+    expect_same(dense::search(field, q, local), whole, "from the last periodic checkpoint");
+  }
+}
+
+// A checkpoint of another problem, layout or kind, or a damaged one, is refused with one line
+// naming the file and what differs.
+TEST_F(DenseCheckpoint, ForeignOrDamagedCheckpointsAreRefused) {
+  const Instance in = random_instance(5, 3);
+  const GogField field(3, in.extent, in.gog);
+  dense::Query q;
+  q.start = in.start;
+  q.goal = in.goal;
+  q.algorithm = dense::Algorithm::dijkstra;
+  q.threads = 2;
+  q.checkpointing.path = file("ck");
+  q.checkpointing.interrupted = interrupt_at(2);
+  dense::LocalTransport local;
+  ASSERT_EQ(dense::search(field, q, local).status, Status::interrupted);
+  auto refusal = [&](dense::Query r, const GogField& f) -> std::string {
+    r.checkpointing = {};
+    r.checkpointing.restart = file("ck");
+    try {
+      dense::search(f, r, local);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  const std::string prefix = "--restart '" + file("ck") + "': ";
+  dense::Query other = q;
+  other.threads = 1;
+  EXPECT_EQ(refusal(other, field),
+            prefix + "was written for another run (threads = 2; this run has threads = 1)");
+  other = q;
+  other.algorithm = dense::Algorithm::bfs;
+  EXPECT_EQ(refusal(other, field),
+            prefix + "was written for another run (engine = dijkstra; this run has engine = bfs)");
+  other = q;
+  other.keep_path = true;
+  EXPECT_EQ(refusal(other, field),
+            prefix + "was written for another run (path = no; this run has path = yes)");
+  GogParams g = in.gog;
+  g.seed += 1;
+  const GogField another(3, in.extent, g);
+  if (another.is_free(q.start) && another.is_free(q.goal)) {
+    EXPECT_NE(refusal(q, another).find("(seed = "), std::string::npos);
+  }
+  // One byte changed in the middle: the checksum.
+  std::string bytes;
+  {
+    std::ifstream f(file("ck"), std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(f), {});
+  }
+  ASSERT_GT(bytes.size(), 200u);
+  std::string bad = bytes;
+  bad[bad.size() / 2] ^= 0x20;
+  std::ofstream(file("ck"), std::ios::binary) << bad;
+  EXPECT_EQ(refusal(q, field), prefix + "fails its checksum (a damaged checkpoint)");
+  std::ofstream(file("ck"), std::ios::binary) << bytes.substr(0, bytes.size() - 9);
+  EXPECT_EQ(refusal(q, field), prefix + "is cut short (a damaged or incomplete checkpoint)");
+  std::ofstream(file("ck"), std::ios::binary) << "hpcplan fluid checkpoint\n";
+  EXPECT_NE(refusal(q, field).find("is not an hpcplan dense lattice checkpoint"),
+            std::string::npos);
+  std::filesystem::remove(file("ck"));
+  EXPECT_EQ(refusal(q, field), prefix + "is not a readable regular file");
+  // The intact file is accepted again.
+  std::ofstream(file("ck"), std::ios::binary) << bytes;
+  EXPECT_EQ(refusal(q, field), "accepted");
+}
+
+// A checkpoint that cannot be written is a run failure naming the file, not an answer.
+TEST_F(DenseCheckpoint, AnUnwritableCheckpointIsARunFailure) {
+  const Instance in = random_instance(5, 3);
+  const GogField field(3, in.extent, in.gog);
+  dense::Query q;
+  q.start = in.start;
+  q.goal = in.goal;
+  q.threads = 2;
+  q.checkpointing.path = file("missing-dir/ck");
+  q.checkpointing.interrupted = interrupt_at(1);
+  dense::LocalTransport local;
+  for (const dense::Algorithm a : {dense::Algorithm::bfs, dense::Algorithm::dijkstra}) {
+    q.algorithm = a;
+    q.checkpointing.interrupted = interrupt_at(1);
+    try {
+      const dense::Result r = dense::search(field, q, local);
+      ADD_FAILURE() << "an unwritable checkpoint was accepted: " << to_string(r.status);
+    } catch (const RunError& e) {
+      EXPECT_NE(std::string(e.what()).find(file("missing-dir/ck")), std::string::npos) << e.what();
+    }
   }
 }
 

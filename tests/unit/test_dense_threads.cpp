@@ -5,6 +5,7 @@
 // answer, path and counts.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -27,6 +28,39 @@ dense::Query corner_query(const GogField& field, dense::Algorithm a, int threads
   q.threads = threads;
   q.keep_path = true;
   return q;
+}
+
+// Checkpoints are written by the master thread between two barriers while the others wait,
+// and read before the threads start: an interrupted run restarted on 3 threads, from a
+// checkpoint written at every boundary until it ends, gives the uninterrupted answer.
+TEST(DenseThreads, CheckpointsAreWrittenBetweenBarriers) {
+  GogParams gp;
+  gp.seed = 12;
+  const GogField field(3, 24, gp);
+  dense::LocalTransport local;
+  const std::string file = ::testing::TempDir() + "hpcplan-dense-thread-ckpt";
+  for (const dense::Algorithm a : {dense::Algorithm::bfs, dense::Algorithm::dijkstra}) {
+    const dense::Result whole = dense::search(field, corner_query(field, a, 3), local);
+    dense::Query q = corner_query(field, a, 3);
+    q.checkpointing.path = file;
+    q.checkpointing.interrupted = [] { return true; };
+    dense::Result r;
+    int legs = 0;
+    for (; legs < 1000; ++legs) {
+      r = dense::search(field, q, local);
+      if (r.status != Status::interrupted) break;
+      // The next leg reads what this one wrote and writes the other file.
+      q.checkpointing.restart = q.checkpointing.path;
+      q.checkpointing.path = legs % 2 ? file : file + ".b";
+    }
+    EXPECT_GT(legs, 5);
+    EXPECT_EQ(r.status, whole.status);
+    EXPECT_EQ(r.path, whole.path);
+    EXPECT_EQ(r.counters.expanded, whole.counters.expanded);
+    EXPECT_EQ(r.counters.generated, whole.counters.generated);
+  }
+  std::remove(file.c_str());
+  std::remove((file + ".b").c_str());
 }
 
 TEST(DenseThreads, EveryThreadCountGivesTheOneThreadAnswer) {

@@ -9,6 +9,7 @@
 // bytes after its end or failing its checksum is an InputError "--restart 'FILE': <what>".
 #include <cstdint>
 #include <cstring>
+#include <span>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -28,9 +29,14 @@ class Writer {
     out_.append(reinterpret_cast<const char*>(&v), sizeof v);
   }
   template <class T>
-  void put_array(const std::vector<T>& a) {
+  void put_array(std::span<const T> a) {
+    static_assert(std::is_trivially_copyable_v<T>);
     put<std::uint64_t>(a.size());
-    out_.append(reinterpret_cast<const char*>(a.data()), a.size() * sizeof(T));
+    if (!a.empty()) out_.append(reinterpret_cast<const char*>(a.data()), a.size() * sizeof(T));
+  }
+  template <class T>
+  void put_array(const std::vector<T>& a) {
+    put_array(std::span<const T>(a));
   }
   void put_string(std::string_view s) {
     put<std::uint64_t>(s.size());
@@ -61,6 +67,24 @@ class Reader {
     if (n != expected)
       fail("holds " + std::to_string(n) + " entries where " + std::to_string(expected) +
            " were expected");
+    a.resize(n);
+    if (n > 0) std::memcpy(a.data(), take(n * sizeof(T)), n * sizeof(T));
+  }
+  // An array into memory of its size (the count saved must be out.size()).
+  template <class T>
+  void get_array(std::span<T> out) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const auto n = get<std::uint64_t>();
+    if (n != out.size())
+      fail("holds " + std::to_string(n) + " entries where " + std::to_string(out.size()) +
+           " were expected");
+    if (n > 0) std::memcpy(out.data(), take(n * sizeof(T)), n * sizeof(T));
+  }
+  // An array of any length the bytes left can hold.
+  template <class T>
+  void get_array(std::vector<T>& a) {
+    const auto n = get<std::uint64_t>();
+    if (n > left() / sizeof(T)) fail("is cut short (a damaged or incomplete checkpoint)");
     a.resize(n);
     if (n > 0) std::memcpy(a.data(), take(n * sizeof(T)), n * sizeof(T));
   }

@@ -11,8 +11,10 @@
 namespace hpcplan::interrupt {
 
 // Installs the handlers (once; later calls do nothing). Until then the signals keep their
-// default actions, and each handler restores its signal's default action once it has run, so
-// a second Ctrl-C (or SIGTERM) ends a run that is slow to reach its next boundary at once.
+// default actions. The SIGTERM and SIGINT handlers restore their signal's default action once
+// they have run, so a second Ctrl-C (or SIGTERM) ends a run that is slow to reach its next
+// boundary at once; a second SIGUSR1 only repeats the request (SLURM's warning may arrive both
+// directly and forwarded by mpirun or the batch shell).
 void install();
 
 // The signal that asked the run to end (SIGUSR1, SIGTERM or SIGINT), 0 while none has.

@@ -12,6 +12,8 @@ enum class Status {
   budget_exceeded,  // the state budget ran out first
   timeout,          // the deadline passed first
   cancelled,        // another thread asked the run to stop
+  interrupted,      // a signal (SLURM's warning, SIGTERM, Ctrl-C) ended it at a safe boundary
+                    // after its checkpoint was written; --restart continues it
 };
 
 constexpr std::string_view to_string(Status s) {
@@ -26,6 +28,8 @@ constexpr std::string_view to_string(Status s) {
       return "timeout";
     case Status::cancelled:
       return "cancelled";
+    case Status::interrupted:
+      return "interrupted";
   }
   return "unknown";
 }

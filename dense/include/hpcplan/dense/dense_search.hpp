@@ -31,6 +31,7 @@
 
 #include "hpcplan/core/result.hpp"
 #include "hpcplan/core/stop.hpp"
+#include "hpcplan/dense/dense_checkpoint.hpp"
 #include "hpcplan/dense/slab_transport.hpp"
 #include "hpcplan/env/gog.hpp"
 #include "hpcplan/graph/lattice_graph.hpp"
@@ -54,6 +55,7 @@ struct Query {
   Stop stop;                        // polled between chunks of a level or class
   std::string progress_label;       // non-empty: progress lines (HPCPLAN_PROGRESS=1 or
   double progress_after_s = 2.0;    // a terminal) once the run passes this many seconds
+  Checkpointing checkpointing;      // writing checkpoints, restarting from one
 };
 
 // What the engine did beyond the counters.
@@ -91,7 +93,9 @@ struct Result : hpcplan::Result<std::vector<int>> {
 std::uint64_t planned_bytes(const GogField& field, const Query& query, int ranks);
 
 // Runs the query on this rank's slab; collective over the transport's ranks. InputError if the
-// planned bytes exceed the budget (one line naming both), before anything large is allocated.
+// planned bytes exceed the budget (one line naming both), before anything large is allocated,
+// or if a rank's restart checkpoint is refused (every rank throws it, with that rank's
+// message). RunError if a checkpoint cannot be written.
 Result search(const GogField& field, const Query& query, SlabTransport& transport);
 
 }  // namespace hpcplan::dense

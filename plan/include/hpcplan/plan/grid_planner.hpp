@@ -80,6 +80,9 @@ struct GridReport {
   GridResult result;
   std::optional<SerialReference> serial;
   std::optional<dense::Figures> dense;  // the dense engine's own figures, when it ran
+  // Checkpoints (set by the command line): the files continued from and written (the user's
+  // FILE; one per rank), and the signal that interrupted the run ("SIGUSR1", ...).
+  std::string restarted_from, checkpoint, interrupted_by;
 };
 
 // The serial search. Its visited map is chosen by the lattice's size: where the packed keys fit

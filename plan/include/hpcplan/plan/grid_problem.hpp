@@ -63,10 +63,19 @@ struct GridSearchOptions {
   // thread), or one contiguous slab per rank and thread balanced by free states.
   int slab_layers = 0;
   bool contiguous_slabs = false;
+  // The dense engine's checkpoints (dense/dense_checkpoint.hpp says what is saved): written to
+  // `checkpoint` (one file per rank, FILE.r<rank> on several) every `checkpoint_every_s`
+  // seconds (0: only when interrupted) and when `interrupted` turns true (the run then ends
+  // with status interrupted); `restart` continues from such files. BFS and Dijkstra only.
+  std::string checkpoint, restart;
+  double checkpoint_every_s = 0.0;
+  std::function<bool()> interrupted;
 };
 
 // Throws InputError for anything a user could have got wrong.
 void validate(const GridProblem& problem, const GridSearchOptions& options);
+// InputError if the options ask for checkpoints and the run does not use the dense engine.
+void require_dense_for_checkpoints(const GridSearchOptions& options, bool dense);
 
 // Seed 002 III-B: from the nominal corner, advance one voxel at a time, one axis after another
 // (axis 0, 1, ..., d-1, 0, ...), towards the opposite corner until the state is free.
