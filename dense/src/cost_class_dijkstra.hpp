@@ -97,7 +97,10 @@ class CostClassDijkstra {
     const std::string identity =
         cp.path.empty() && cp.restart.empty() ? "" : run_identity(field_, q_, slabs_);
     if (!cp.restart.empty()) {
-      agree_on_restart(tr_, [&] { restore(identity, totals); });
+      agree_on_restart(tr_, [&] {
+        restore(identity, totals);
+        return totals.buckets;
+      });
     } else if (slabs_.of_tile(start_tile).rank == slabs_.rank) {
       Thread& th = threads_[slabs_.of_tile(start_tile).thread];
       th.pending[ClassKey{}].push_back({start_tile, Word{1} << layout_.bit_of(q_.start)});

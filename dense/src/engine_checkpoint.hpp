@@ -26,14 +26,18 @@ std::string read_checkpoint_file(const std::string& path);
 std::string_view open_checkpoint(std::string_view bytes, const std::string& name,
                                  const std::string& identity);
 
-// Runs `restore` (this rank's read of its checkpoint) on every rank. A refusal on one rank
-// must not leave the others waiting in the search's first exchange: if any rank's throws an
-// InputError, every rank throws one with the lowest such rank's message. Collective.
+// Runs `restore` (this rank's read of its checkpoint, returning the boundary it was written
+// at: levels or buckets done) on every rank. A refusal on one rank must not leave the others
+// waiting in the search's first exchange: if any rank's throws an InputError, every rank
+// throws one with the lowest such rank's message. The ranks' files must also be of one
+// boundary (a job killed while its ranks were writing leaves some at the one before).
+// Collective.
 template <class Restore>
 void agree_on_restart(SlabTransport& tr, Restore&& restore) {
   std::string message;
+  std::uint64_t boundary = 0;
   try {
-    restore();
+    boundary = restore();
   } catch (const InputError& e) {
     message = e.what();
     if (message.empty()) message = "--restart: refused";
@@ -43,7 +47,15 @@ void agree_on_restart(SlabTransport& tr, Restore&& restore) {
   int first = -1;
   for (std::size_t r = 0; r < flags.size() && first < 0; ++r)
     if (flags[r] != std::byte{0}) first = static_cast<int>(r);
-  if (first < 0) return;
+  if (first < 0) {
+    std::uint64_t span[2] = {boundary, ~boundary};  // the largest, and the smallest (negated)
+    tr.max(span);
+    if (span[0] != ~span[1])
+      throw InputError("--restart: the ranks' checkpoints were written at different boundaries (" +
+                       std::to_string(~span[1]) + " and " + std::to_string(span[0]) +
+                       "): the job was stopped while writing them; start afresh");
+    return;
+  }
   const std::string_view mine = first == tr.rank() ? std::string_view(message) : "";
   const std::vector<std::byte> text = tr.allgather(std::as_bytes(std::span(mine)));
   std::string what(reinterpret_cast<const char*>(text.data()), text.size());

@@ -65,8 +65,10 @@ class LevelBfs {
     const std::string identity =
         cp.path.empty() && cp.restart.empty() ? "" : run_identity(field_, q_, slabs_);
     if (!cp.restart.empty()) {
-      agree_on_restart(tr_,
-                       [&] { restore(identity, level, reached_total, peak_level, list_peak); });
+      agree_on_restart(tr_, [&] {
+        restore(identity, level, reached_total, peak_level, list_peak);
+        return level;
+      });
     } else if (slabs_.of_tile(start_tile).rank == slabs_.rank) {
       const Block& b = slabs_.of_tile(start_tile);
       *code_words(b, start_tile) |= Word{1} << layout_.bit_of(q_.start);  // level 0: code 1
