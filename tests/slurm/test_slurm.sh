@@ -17,10 +17,12 @@ eval "$line"
 export HPCPLAN_ROOT=$root HPCPLAN_BIN_DIR=$bins HPCPLAN_RESULTS=$work/results
 
 submit() {  # submit NAME SCRIPT [sbatch args]: waits; prints the job id
-  local name=$1 script=$2
+  local name=$1 script=$2 rc=0
   shift 2
   timeout 300 sbatch --parsable --wait --chdir "$work" --output "$work/$name-%j.out" "$@" \
-    "$root/slurm/$script"
+    "$root/slurm/$script" || rc=$?
+  ((rc != 124)) || echo "sbatch --wait ($name) did not return within 300 s: a hung job?" >&2
+  return "$rc"
 }
 
 # 1. Smoke: 2 ranks, cost equal to the serial engine's.
