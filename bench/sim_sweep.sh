@@ -4,9 +4,12 @@
 # grid is 18 particle counts (500, 2,000, ..., 24,500 and 25,000) x 3 scenarios x its 2 planners
 # x 5 trials = 540 runs; D* Lite is added here (810 runs per pacing and controller).
 #
-# Resumable: a cell whose CSV exists is skipped (the CLI writes it atomically at the cell's end),
-# so rerunning an interrupted sweep finishes it. Progress and an estimate of the time left go to
-# stderr.
+# Resumable: a cell whose CSV exists is skipped (written, under its final name, only once every
+# run of the cell is made), so rerunning an interrupted sweep finishes it. Interrupted (SIGUSR1,
+# SLURM's warning before the time limit; SIGTERM; Ctrl-C), the cell in progress stops after its
+# current frame with its finished runs saved in cells/NAME.ck (hpcplan sim --checkpoint) and the
+# sweep exits 75; rerunning it continues that cell from its checkpoint (--restart). Progress and
+# an estimate of the time left go to stderr.
 #
 # Usage: bench/sim_sweep.sh [OUT]          every cell, in order (default OUT: results/sim/local)
 #        bench/sim_sweep.sh --count        how many cells the settings give
@@ -73,7 +76,26 @@ cell_of() {
   n=${particles[$((k / nc / np / na / ns))]}
 }
 
-run_cell() {  # run_cell K OUT: prints "ran" or "skipped"
+# Signals: the first SIGUSR1, SIGTERM or SIGINT asks the cell in progress to stop (one SIGUSR1
+# to hpcplan sim, which runs in the background so that the trap runs at once) and the sweep to
+# start no other cell.
+stop=""      # the signal that asked the sweep to stop
+sim_pid=""   # the cell in progress
+forwarded=0  # it has had its SIGUSR1 (a second one would end it at once)
+trapped=0    # a trap ran since `wait` began
+on_signal() {
+  [[ -n $stop ]] || stop=$1
+  trapped=1
+  if [[ -n $sim_pid ]] && ((!forwarded)); then
+    forwarded=1
+    kill -USR1 "$sim_pid" 2> /dev/null || true
+  fi
+}
+trap 'on_signal USR1' USR1
+trap 'on_signal TERM' TERM
+trap 'on_signal INT' INT
+
+run_cell() {  # run_cell K OUT: sets cell_result to ran, skipped or interrupted
   local k=$1 out=$2
   cell_of "$k"
   local name="${scenario}_${algo}_${n}_${pace}_${controller}" occupancy_args=()
@@ -81,15 +103,57 @@ run_cell() {  # run_cell K OUT: prints "ran" or "skipped"
     name+="_density${occupancy#density:}"
     occupancy_args=(--occupancy density --density-threshold "${occupancy#density:}")
   fi
-  if [[ -f $out/cells/$name.csv ]]; then echo skipped; return; fi
+  cell_name=$name
+  if [[ -f $out/cells/$name.csv ]]; then cell_result=skipped; return; fi
   mkdir -p "$out/cells"
+  local base=$out/cells/$name restart=()
+  if [[ -f $base.ck ]]; then
+    restart=(--restart "$base.ck")
+    echo "sim_sweep: cell $k ($name) continues from its checkpoint" >> "$base.log"
+  else
+    : > "$base.log"
+  fi
+  # The CSV goes to NAME.csv.part (an interrupted invocation writes the runs it finished) and
+  # takes its name once the cell is whole.
+  rm -f "$base.json"
   "$bin" sim --particles "$n" --scenario "$scenario" --algo "$algo" --runs "$trials" \
     --seed "$seed" --pace "$pace" --controller "$controller" --max-sim-s "$max_sim" \
     --threads "$threads" "${occupancy_args[@]}" \
-    --replan-log "$out/cells/$name.replans.csv" --output "$out/cells/$name.json" \
-    --csv "$out/cells/$name.csv" > /dev/null 2> "$out/cells/$name.log" ||
-    die "cell $k ($name) failed: $(tail -1 "$out/cells/$name.log")"
-  echo ran
+    --replan-log "$base.replans.csv" --output "$base.json" --checkpoint "$base.ck" \
+    "${restart[@]}" --csv "$base.csv.part" > /dev/null 2>> "$base.log" &
+  sim_pid=$! forwarded=0 trapped=0
+  local rc=0 again
+  wait "$sim_pid" || rc=$?
+  while ((trapped)); do  # a trap ended `wait` early: wait for hpcplan sim itself
+    trapped=0 again=0
+    wait "$sim_pid" 2> /dev/null || again=$?
+    ((again != 127)) || break
+    rc=$again
+  done
+  sim_pid=""
+  # Asked before it had installed its handler (while setting up), hpcplan sim ends at once with
+  # SIGUSR1's default action; its last checkpoint, if any, is still there.
+  if ((forwarded && rc == 138)); then cell_result=interrupted; return; fi
+  ((rc == 0)) || die "cell $k ($name) failed: $(tail -1 "$base.log")"
+  if python3 -c 'import json, sys; sys.exit(json.load(open(sys.argv[1])).get("status") != "interrupted")' \
+    "$base.json" 2> /dev/null; then
+    cell_result=interrupted
+    return
+  fi
+  mv -f "$base.csv.part" "$base.csv"
+  rm -f "$base.ck"
+  cell_result=ran
+}
+
+cell_result=""
+interrupted() {  # interrupted K: the message and exit status of a sweep stopped in or before cell K
+  if [[ $cell_result == interrupted ]]; then
+    echo "sim_sweep: interrupted (SIG$stop) in cell $1 ($cell_name): its finished runs are in" \
+      "cells/$cell_name.ck; run the sweep again to continue" >&2
+  else
+    echo "sim_sweep: interrupted (SIG$stop) before cell $1; run the sweep again to continue" >&2
+  fi
+  exit 75
 }
 
 case ${1:-} in
@@ -98,7 +162,8 @@ case ${1:-} in
     [[ $# -eq 3 ]] || die "usage: sim_sweep.sh --cell K OUT"
     [[ $2 =~ ^[0-9]+$ ]] && (($2 < cells)) || die "cell $2 is not in 0..$((cells - 1))"
     [[ -x $bin ]] || die "$bin not found: build first (bash scripts/build.sh)"
-    run_cell "$2" "$3" > /dev/null
+    run_cell "$2" "$3"
+    [[ $cell_result != interrupted ]] || interrupted "$2"
     cell_of "$2"
     echo "sim_sweep: cell $2 ($scenario $algo $n particles, $pace, $controller, $occupancy) done in $3/cells"
     exit 0 ;;
@@ -109,10 +174,12 @@ mkdir -p "$out"
 echo "sim_sweep: $cells cells x $trials trials, pacing ${paces[*]}, controller ${controllers[*]}, occupancy ${occupancies[*]}, into $out" >&2
 start=$SECONDS ran=0
 for ((k = 0; k < cells; k++)); do
+  [[ -z $stop ]] || interrupted "$k"
   t0=$SECONDS
-  what=$(run_cell "$k" "$out")
+  run_cell "$k" "$out"
+  [[ $cell_result != interrupted ]] || interrupted "$k"
   cell_of "$k"
-  if [[ $what == ran ]]; then
+  if [[ $cell_result == ran ]]; then
     ran=$((ran + 1))
     per=$(((SECONDS - start) / ran))
     left=$(((cells - k - 1) * per))

@@ -25,8 +25,15 @@ failures=0
 for c in "${cases[@]}"; do
   # shellcheck disable=SC2086
   serial=$("$bin" grid $c --json)
+  rc=0
   # shellcheck disable=SC2086
-  distributed=$(timeout 120 mpirun -np 2 --oversubscribe "$bin" grid $c --json)
+  distributed=$(timeout 120 mpirun -np 2 --oversubscribe "$bin" grid $c --json) || rc=$?
+  if ((rc != 0)); then  # (set -e would end the script here without a word)
+    ((rc != 124)) || echo "smoke: FAIL $c: mpirun did not end within 120 s (a hang?)" >&2
+    ((rc == 124)) || echo "smoke: FAIL $c: mpirun exit $rc" >&2
+    failures=$((failures + 1))
+    continue
+  fi
   if ! python3 - "$c" "$serial" "$distributed" <<'PY'; then failures=$((failures + 1)); fi
 import json, sys
 case, s, d = sys.argv[1], json.loads(sys.argv[2]), json.loads(sys.argv[3])
@@ -45,7 +52,7 @@ sys.exit(0 if ok else 1)
 PY
 done
 if ((failures > 0)); then
-  echo "smoke: $failures case(s) disagree" >&2
+  echo "smoke: $failures case(s) failed or disagree" >&2
   exit 1
 fi
 echo "smoke: all ${#cases[@]} cases agree"

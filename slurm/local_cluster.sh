@@ -67,6 +67,9 @@ SlurmctldTimeout=30
 SlurmdTimeout=30
 InactiveLimit=0
 KillWait=5
+# Jobs may be requeued (a checkpointed job requeues itself on its warning signal: README.md);
+# SLURM holds a requeued job about two minutes before it may start again (BeginTime).
+JobRequeue=1
 NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=$mem_mb State=UNKNOWN
 PartitionName=local Nodes=$host Default=YES MaxTime=INFINITE State=UP OverSubscribe=FORCE:4
 CONF

@@ -5,6 +5,8 @@ set -uo pipefail
 bin=$1
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 fail() { echo "FAIL: $*" >&2; exit 1; }
+# Every mpirun here runs under `timeout` (a hang guard): exit 124 means it did not end in time.
+hung() { (($1 != 124)) || echo " (124: mpirun did not end within its timeout: a hang)"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
@@ -14,7 +16,7 @@ bad_mpi() {  # what-the-line-says args...
   local expect=$1; shift
   timeout 60 mpirun -np 2 --oversubscribe "$bin" "$@" >"$tmp/out" 2>"$tmp/err"
   local rc=$?
-  ((rc == 2)) || fail "'$*' under mpirun: exit $rc, not 2 ($(cat "$tmp/err"))"
+  ((rc == 2)) || fail "'$*' under mpirun: exit $rc, not 2$(hung $rc) ($(cat "$tmp/err"))"
   [[ $(grep -c "hpcplan: error" "$tmp/err") == 1 ]] ||
     fail "'$*' under mpirun: expected one error line, got: $(cat "$tmp/err")"
   grep -q -- "$expect" "$tmp/err" || fail "'$*' under mpirun: '$expect' not in: $(cat "$tmp/err")"
@@ -32,14 +34,15 @@ bad_mpi "runs in one process" sphere2d --map "$(dirname "$0")/../../bench/maps/s
 echo "ok: bad input and single-process subcommands exit 2 with one line"
 
 # 2. Output comes from rank 0 only, and the JSON is complete.
-timeout 120 mpirun -np 2 --oversubscribe "$bin" grid --dims 4 --json >"$tmp/out" || fail "2-rank run failed"
+timeout 120 mpirun -np 2 --oversubscribe "$bin" grid --dims 4 --json >"$tmp/out" ||
+  fail "2-rank run failed: exit $?$(hung $?)"
 [[ $(wc -l <"$tmp/out") == 1 ]] || fail "expected one JSON line, got $(wc -l <"$tmp/out")"
 python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert len(j['distributed']['per_rank'])==2" "$tmp/out" ||
   fail "JSON lacks per-rank figures"
 echo "ok: one JSON object with per-rank figures"
 # Prefix-cut ownership is reported as given, and the run solves.
 timeout 120 mpirun -np 2 --oversubscribe "$bin" grid --dims 4 --owner-cuts 40 --json >"$tmp/out" ||
-  fail "2-rank run with --owner-cuts failed"
+  fail "2-rank run with --owner-cuts failed: exit $?$(hung $?)"
 python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['status']=='solved'; \
 assert j['distributed']['ownership']=={'prefix_cuts': {'axes': [3, 2], 'at': [40]}}, j['distributed']['ownership']" \
   "$tmp/out" || fail "--owner-cuts: JSON ownership is not the cuts given"
@@ -49,7 +52,7 @@ echo "ok: prefix cuts reported in the JSON"
 timeout 60 mpirun -np 2 --oversubscribe "$bin" grid --dims 6 --extent 40 --algo dijkstra \
   --time-limit 1e-9 --json >"$tmp/out"
 rc=$?
-((rc == 0)) || fail "time-limited run: exit $rc (124 = hang)"
+((rc == 0)) || fail "time-limited run: exit $rc$(hung $rc)"
 python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['status']=='timeout', j['status']" \
   "$tmp/out" || fail "time-limited run: status is not timeout"
 echo "ok: time limit honoured"
@@ -60,7 +63,7 @@ echo "ok: time limit honoured"
 HPCPLAN_FAULT_KILL=1:2000 timeout 120 mpirun -np 2 --oversubscribe -x HPCPLAN_FAULT_KILL "$bin" \
   grid --dims 6 --extent 40 --algo dijkstra --engine sparse --time-limit 100 --json >"$tmp/out" 2>"$tmp/err"
 rc=$?
-((rc != 0 && rc != 124)) || fail "killed rank: job exit $rc"
+((rc != 0 && rc != 124)) || fail "killed rank: job exit $rc$(hung $rc)"
 [[ ! -s $tmp/out ]] || fail "killed rank: a result was printed"
 echo "ok: killing a rank ended the job with exit $rc"
 
@@ -75,14 +78,15 @@ for fault in "1:dijkstra:async" "0:dijkstra:bulk_sync" "1:bfs:async"; do
     "$bin" grid --dims 6 --extent 40 --algo "$algo" --mode "$mode" --engine sparse --time-limit 100 \
     --json >"$tmp/out" 2>"$tmp/err"
   rc=$?
-  ((rc == 1)) || fail "throwing rank ($fault): job exit $rc, not 1 (124 = hang; $(cat "$tmp/err"))"
+  ((rc == 1)) || fail "throwing rank ($fault): job exit $rc, not 1$(hung $rc) ($(cat "$tmp/err"))"
   grep -q "hpcplan: error: rank $rank: injected fault after 2000 expansions" "$tmp/err" ||
     fail "throwing rank ($fault): its message is not on stderr: $(cat "$tmp/err")"
   [[ ! -s $tmp/out ]] || fail "throwing rank ($fault): a result was printed"
 done
 HPCPLAN_FAULT_THROW=oops timeout 60 mpirun -np 2 --oversubscribe -x HPCPLAN_FAULT_THROW "$bin" \
   grid --dims 2 >/dev/null 2>"$tmp/err"
-(($? == 2)) || fail "a malformed HPCPLAN_FAULT_THROW is not bad input"
+rc=$?
+((rc == 2)) || fail "a malformed HPCPLAN_FAULT_THROW is not bad input: exit $rc$(hung $rc)"
 echo "ok: a rank throwing mid-search ended the job with exit 1 and its message"
 
 # 5. Ranks that derive different limits agree on one engine and one layout (an MPMD launch
@@ -90,12 +94,12 @@ echo "ok: a rank throwing mid-search ended the job with exit 1 and its message"
 #    engine on one rank only, and 1 against 8 threads, once hung or answered no_path.
 timeout 120 mpirun --oversubscribe -np 1 "$bin" grid --dims 4 --extent 40 --algo bfs --memory-budget 400000 \
   --json : -np 1 "$bin" grid --dims 4 --extent 40 --algo bfs --memory-budget 600000 --json \
-  >"$tmp/out" 2>"$tmp/err" || fail "ranks with different budgets: exit $? (124 = hang)"
+  >"$tmp/out" 2>"$tmp/err" || fail "ranks with different budgets: exit $?$(hung $?)"
 python3 -c "import json,sys; assert json.load(open(sys.argv[1]))['status']=='solved'" "$tmp/out" ||
   fail "ranks with different budgets: not solved"
 timeout 120 mpirun --oversubscribe -np 1 "$bin" grid --dims 3 --extent 200 --algo bfs --engine dense \
   --threads 1 --json : -np 1 "$bin" grid --dims 3 --extent 200 --algo bfs --engine dense \
-  --threads 8 --json >"$tmp/out" 2>"$tmp/err" || fail "ranks with 1 and 8 threads: exit $?"
+  --threads 8 --json >"$tmp/out" 2>"$tmp/err" || fail "ranks with 1 and 8 threads: exit $?$(hung $?)"
 python3 -c "import json,sys; j=json.loads(open(sys.argv[1]).read()); \
 assert j['status'] == 'solved' and j['dense']['threads'] == 1, j" "$tmp/out" ||
   fail "ranks with 1 and 8 threads did not agree on one thread and solve"
@@ -105,6 +109,6 @@ echo "ok: ranks with different budgets and thread counts agreed"
 #    the job ends (once rank 0 alone refused while the other waited).
 timeout 120 mpirun -np 2 --oversubscribe "$bin" grid --dims 4 --extent 40 --algo bfs \
   --engine dense --threads 1 --memory-budget 700000 --compare-serial --json >"$tmp/out" \
-  2>"$tmp/err" || fail "--compare-serial over the serial budget: exit $? (124 = hang)"
+  2>"$tmp/err" || fail "--compare-serial over the serial budget: exit $?$(hung $?)"
 grep -q '"serial_reference"' "$tmp/out" && fail "--compare-serial over the budget still ran it"
 echo "ok: --compare-serial without room for the serial dense engine ends cleanly"

@@ -17,10 +17,12 @@ eval "$line"
 export HPCPLAN_ROOT=$root HPCPLAN_BIN_DIR=$bins HPCPLAN_RESULTS=$work/results
 
 submit() {  # submit NAME SCRIPT [sbatch args]: waits; prints the job id
-  local name=$1 script=$2
+  local name=$1 script=$2 rc=0
   shift 2
   timeout 300 sbatch --parsable --wait --chdir "$work" --output "$work/$name-%j.out" "$@" \
-    "$root/slurm/$script"
+    "$root/slurm/$script" || rc=$?
+  ((rc != 124)) || echo "sbatch --wait ($name) did not return within 300 s: a hung job?" >&2
+  return "$rc"
 }
 
 # 1. Smoke: 2 ranks, cost equal to the serial engine's.
@@ -165,4 +167,151 @@ if SLURM_CONF=$work/none.conf bash "$root/slurm/submit.sh" smoke > /dev/null 2> 
   fail "submit.sh succeeded without a controller"
 fi
 grep -q "no SLURM controller" "$work/err.txt" || fail "unclear error without a controller: $(cat "$work/err.txt")"
+
+# 10. Checkpointed jobs interrupted by their warning signal and requeued. The cluster requeues;
+# `scancel --batch --signal=USR1` signals the batch shell alone, as `#SBATCH --signal=B:USR1@N`
+# does before the time limit (the shell forwards it); SLURM holds a requeued job for about two
+# minutes (Reason=BeginTime), so the test releases it 2 s after it is pending again (slurmd
+# refuses a job relaunched within the second its credential was revoked by the requeue:
+# "Job credential revoked").
+grep -Eq '^JobRequeue += 1$' <<< "$(scontrol show config)" || fail "the local cluster does not allow requeueing"
+field() { scontrol show job -o "$1" 2> /dev/null | grep -o " $2=[^ ]*" | cut -d= -f2; }
+finished() { [[ $1 =~ ^(COMPLETED|FAILED|CANCELLED|TIMEOUT|NODE_FAIL|OUT_OF_MEMORY|PREEMPTED|BOOT_FAIL|DEADLINE)$ ]]; }
+# interrupt_requeue NAME JID FILE...: once the FILEs exist, the warning signal; then the
+# requeued job released, and its end awaited (COMPLETED, else a failure). Each wait is bounded.
+interrupt_requeue() {
+  local name=$1 jid=$2 f ready state restarts
+  shift 2
+  for ((t = 0; ; t++)); do
+    ready=1
+    for f in "$@"; do [[ -e $f ]] || ready=0; done
+    ((ready == 0)) || break
+    state=$(field "$jid" JobState)
+    ! finished "$state" || fail "$name: job $jid ended ($state) before it was interrupted"
+    ((t < 600)) || fail "$name: no $* within 60 s of job $jid"
+    sleep 0.1
+  done
+  scancel --batch --signal=USR1 "$jid" || fail "$name: scancel --signal=USR1 failed"
+  for ((t = 0; ; t++)); do
+    state=$(field "$jid" JobState) restarts=$(field "$jid" Restarts)
+    if [[ $state == PENDING && ${restarts:-0} -ge 1 ]]; then
+      sleep 2
+      scontrol update JobId="$jid" StartTime=now 2> /dev/null && break
+    fi
+    ! finished "$state" || fail "$name: job $jid ended ($state) instead of being requeued"
+    ((t < 600)) || fail "$name: job $jid was not requeued within 60 s of its signal (state $state)"
+    sleep 0.1
+  done
+  for ((t = 0; ; t++)); do
+    state=$(field "$jid" JobState)
+    [[ $state != COMPLETED ]] || break
+    ! finished "$state" || fail "$name: the requeued job $jid ended $state"
+    ((t < 1800)) || fail "$name: the requeued job $jid did not end within 180 s (state $state)"
+    sleep 0.1
+  done
+  [[ $(field "$jid" Restarts) == 1 ]] || fail "$name: job $jid restarted $(field "$jid" Restarts) times, not once"
+  local out=$work/$name-$jid.out
+  [[ $(grep -c "requeueing job $jid (restart 1)" "$out") -eq 1 &&
+     $(grep -c "restart 1 of job $jid: continuing in" "$out") -eq 1 ]] ||
+    fail "$name: the job's output does not show one interruption and one restart: $(cat "$out")"
+}
+t10=$SECONDS
+# The fluid: 256 water particles (the dam break), 60 frames (about 8 s on one core), a
+# checkpoint and a VTK file every 5 frames; the MPI stand-in alongside it (2 ranks).
+fluid_env=(PRESET=water PARTICLES=300 FRAMES=60 SEED=1 THREADS=1 CHECKPOINT_EVERY=5 VTK_EVERY=5)
+fid=$(env "${fluid_env[@]}" timeout 60 sbatch --parsable --chdir "$work" \
+  --output "$work/fluid-%j.out" --cpus-per-task 1 "$root/slurm/fluid.sbatch") || fail "fluid job not submitted"
+wid=$(timeout 60 sbatch --parsable --chdir "$work" --output "$work/forward-%j.out" --ntasks 2 \
+  "$root/tests/slurm/forward_ranks.sbatch") || fail "MPI stand-in job not submitted"
+# The same fluid uninterrupted, run directly (bounded), meanwhile.
+mkdir -p "$work/fluid_ref"
+timeout 300 "$bins/hpcplan" sph --preset water --particles 300 --frames 60 --seed 1 --threads 1 \
+  --backend cpu --checkpoint "$work/fluid_ref/fluid.ck" --checkpoint-every 5 \
+  --vtk "$work/fluid_ref/vtk" --every 5 > /dev/null 2> "$work/fluid_ref.err" &
+ref_pid=$!
+fres=$work/results/fluid/$fid
+interrupt_requeue fluid "$fid" "$fres/fluid.ck"
+wait "$ref_pid" || fail "the uninterrupted fluid run failed (exit $?: 124 = over 300 s): $(cat "$work/fluid_ref.err")"
+grep -q "fluid: ok (water dambreak, 256 particles, 60 frames; restarts 1, this run from frame [1-9]" \
+  "$work/fluid-$fid.out" || fail "fluid: no final report of the restarted run: $(cat "$work/fluid-$fid.out")"
+grep -q "hpcplan job: restarting from $fres/fluid.ck" "$work/fluid-$fid.out" ||
+  fail "fluid: the requeued run did not restart from the checkpoint"
+cmp -s "$work/fluid_ref/fluid.ck" "$fres/fluid.ck" ||
+  fail "fluid: the final checkpoint differs from the uninterrupted run's"
+for f in "$work"/fluid_ref/vtk/*; do
+  cmp -s "$f" "$fres/vtk/$(basename "$f")" || fail "fluid: vtk/$(basename "$f") differs from the uninterrupted run's"
+done
+[[ $(ls "$work/fluid_ref/vtk" | wc -l) -eq $(ls "$fres/vtk" | wc -l) ]] || fail "fluid: other VTK files"
+python3 - "$fres/meta.json" "$fid" <<'PY' || fail "fluid: meta.json does not record both runs"
+import json, sys
+m = json.load(open(sys.argv[1]))
+assert [r["restart_count"] for r in m["runs"]] == [0, 1], m["runs"]
+assert all(r["job_id"] == sys.argv[2] for r in m["runs"]), m["runs"]
+PY
+[[ $(ls "$work/results/fluid" | wc -l) -eq 1 && ! -e $fres/.requeued.$fid ]] ||
+  fail "fluid: the requeued job did not keep its one folder: $(ls -a "$work/results/fluid" "$fres")"
+echo "fluid requeue ok: the interrupted and requeued job wrote the uninterrupted run's checkpoint and VTK files"
+# The MPI stand-in: both ranks had the signal, through mpirun, and the requeued job ended them.
+wres=$work/results/forward/$wid
+interrupt_requeue forward "$wid" "$wres/ready.r0" "$wres/ready.r1"
+for r in 0 1; do
+  grep -q "rank $r: SIGUSR1" "$work/forward-$wid.out" && grep -q "rank $r: restarted" "$work/forward-$wid.out" ||
+    fail "forward: rank $r did not get the signal through mpirun: $(cat "$work/forward-$wid.out")"
+done
+grep -q "forward: ok (restarts 1" "$work/forward-$wid.out" || fail "forward: no final report"
+echo "mpirun forwarding ok: the batch shell's SIGUSR1 reached both ranks, and the job requeued"
+
+# 11. The dense lattice job likewise (2 ranks, a checkpoint per rank): the requeued job ends
+# with the uninterrupted search's cost, hops and expansions. Until this build's `hpcplan grid`
+# has --checkpoint/--restart, skipped with a notice.
+if [[ $("$bins/hpcplan" grid --help 2>&1) == *--restart* ]]; then
+  if [[ $(id -u) -eq 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
+  lattice_env=(DIMS=5 EXTENT=40 ALGO=dijkstra SEED=1 THREADS=1 CHECKPOINT_EVERY=1)
+  lid=$(env "${lattice_env[@]}" timeout 60 sbatch --parsable --chdir "$work" \
+    --output "$work/lattice-%j.out" --ntasks 2 "$root/slurm/lattice.sbatch") || fail "lattice job not submitted"
+  timeout 300 mpirun -np 2 --oversubscribe "$bins/hpcplan" grid --engine dense --dims 5 --extent 40 \
+    --algo dijkstra --density 0.40 --seed 1 --threads 1 --json > "$work/lattice_ref.json" \
+    2> "$work/lattice_ref.err" &
+  ref_pid=$!
+  lres=$work/results/lattice/$lid
+  interrupt_requeue lattice "$lid" "$lres/lattice.ck.r0" "$lres/lattice.ck.r1"
+  wait "$ref_pid" || fail "the uninterrupted lattice run failed (exit $?: 124 = over 300 s): $(cat "$work/lattice_ref.err")"
+  grep -q "hpcplan job: restarting from $lres/lattice.ck" "$work/lattice-$lid.out" ||
+    fail "lattice: the requeued run did not restart from the checkpoints"
+  python3 - "$work/lattice_ref.json" "$lres/result.json" <<'PY' || fail "lattice: the requeued job's answer differs"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:])
+assert a["status"] == b["status"] == "solved", (a["status"], b["status"])
+for k in ("cost", "hops", "expanded"):
+    assert a[k] == b[k], (k, a[k], b[k])
+print("lattice requeue ok: cost", b["cost"], "hops", b["hops"], "expanded", b["expanded"])
+PY
+else
+  echo "SKIP: lattice checkpoint and requeue: this hpcplan grid has no --checkpoint/--restart yet"
+fi
+
+# 12. The sweep interrupted in a cell (locally: SIGUSR1 to bench/sim_sweep.sh, as the sbatch's
+# forward does): exit 75, the cell's finished runs in its checkpoint and no CSV under the cell's
+# name (a CSV there would mark the cell done); run again, it continues the cell to all its runs.
+isw=$work/results/sim/interrupted
+isw_env=(PARTICLES=3000 SCENARIOS=dynamic ALGOS=astar TRIALS=3 PACE=lockstep MAX_SIM_S=20 THREADS=1
+  BIN="$bins/hpcplan")
+env "${isw_env[@]}" bash "$root/bench/sim_sweep.sh" "$isw" 2> "$work/isweep.txt" &
+isw_pid=$!  # the sweep's own process (under `timeout` it would be timeout's, which dies of SIGUSR1)
+cell=$isw/cells/dynamic_astar_3000_lockstep_seed
+for ((t = 0; t < 600; t++)); do [[ ! -e $cell.ck ]] || break; sleep 0.05; done
+kill -USR1 "$isw_pid"
+for ((t = 0; t < 600; t++)); do kill -0 "$isw_pid" 2> /dev/null || break; sleep 0.1; done
+kill -0 "$isw_pid" 2> /dev/null && { kill "$isw_pid"; fail "sweep interrupted: still running 60 s after SIGUSR1"; }
+wait "$isw_pid"
+rc=$?
+((rc == 75)) || fail "sweep interrupted: exit $rc, not 75 ($(cat "$work/isweep.txt"))"
+grep -q "interrupted (SIGUSR1) in cell 0" "$work/isweep.txt" && [[ -f $cell.ck && ! -e $cell.csv ]] ||
+  fail "sweep interrupted: no checkpoint, or the cell counted done: $(ls "$isw/cells") $(cat "$work/isweep.txt")"
+env "${isw_env[@]}" timeout 300 bash "$root/bench/sim_sweep.sh" "$isw" 2> "$work/isweep.txt" ||
+  fail "sweep continued: exit $? (124: over 300 s): $(cat "$work/isweep.txt")"
+grep -q "continues from its checkpoint" "$cell.log" && [[ ! -e $cell.ck ]] &&
+  [[ $(tail -n +2 "$cell.csv" | wc -l) -eq 3 ]] || fail "sweep continued: the cell is not whole: $(ls "$isw/cells")"
+echo "sweep interrupt ok: the cell continued from its checkpoint to its 3 runs"
+echo "checkpointed jobs and sweep: $((SECONDS - t10)) s"
 echo "slurm: ok"
