@@ -364,18 +364,9 @@ hpcplan_restart_args() {
 
 # hpcplan_grid_checkpoint CHECKPOINT RANKS RESULT: the options and RESULT argument of a
 # checkpointed `hpcplan grid` step: HPCPLAN_CK_ARGS=(--checkpoint CHECKPOINT [--restart ...])
-# and HPCPLAN_CK_RESULT=RESULT; while this build's grid has no --checkpoint/--restart, nothing
-# and none (the step runs again whole when the job is requeued), with a notice.
+# and HPCPLAN_CK_RESULT=RESULT.
 hpcplan_grid_checkpoint() {
   local ck=$1 ranks=$2 result=$3
-  HPCPLAN_CK_ARGS=() HPCPLAN_CK_RESULT=none
-  local help
-  help=$("$(hpcplan_bin hpcplan)" grid --help 2>/dev/null || true)
-  if [[ $help != *--restart* ]]; then
-    echo "hpcplan job: notice: this hpcplan grid has no --checkpoint/--restart: the search keeps" \
-      "no checkpoint, and a requeued job starts it over" >&2
-    return 0
-  fi
   hpcplan_restart_args "$ck" "$ranks"
   # shellcheck disable=SC2034  # read by the templates
   HPCPLAN_CK_ARGS=(--checkpoint "$ck" "${HPCPLAN_RESTART_ARGS[@]}")

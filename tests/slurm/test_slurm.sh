@@ -262,33 +262,28 @@ grep -q "forward: ok (restarts 1" "$work/forward-$wid.out" || fail "forward: no 
 echo "mpirun forwarding ok: the batch shell's SIGUSR1 reached both ranks, and the job requeued"
 
 # 11. The dense lattice job likewise (2 ranks, a checkpoint per rank): the requeued job ends
-# with the uninterrupted search's cost, hops and expansions. Until this build's `hpcplan grid`
-# has --checkpoint/--restart, skipped with a notice.
-if [[ $("$bins/hpcplan" grid --help 2>&1) == *--restart* ]]; then
-  if [[ $(id -u) -eq 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
-  lattice_env=(DIMS=5 EXTENT=40 ALGO=dijkstra SEED=1 THREADS=1 CHECKPOINT_EVERY=1)
-  lid=$(env "${lattice_env[@]}" timeout 60 sbatch --parsable --chdir "$work" \
-    --output "$work/lattice-%j.out" --ntasks 2 "$root/slurm/lattice.sbatch") || fail "lattice job not submitted"
-  timeout 300 mpirun -np 2 --oversubscribe "$bins/hpcplan" grid --engine dense --dims 5 --extent 40 \
-    --algo dijkstra --density 0.40 --seed 1 --threads 1 --json > "$work/lattice_ref.json" \
-    2> "$work/lattice_ref.err" &
-  ref_pid=$!
-  lres=$work/results/lattice/$lid
-  interrupt_requeue lattice "$lid" "$lres/lattice.ck.r0" "$lres/lattice.ck.r1"
-  wait "$ref_pid" || fail "the uninterrupted lattice run failed (exit $?: 124 = over 300 s): $(cat "$work/lattice_ref.err")"
-  grep -q "hpcplan job: restarting from $lres/lattice.ck" "$work/lattice-$lid.out" ||
-    fail "lattice: the requeued run did not restart from the checkpoints"
-  python3 - "$work/lattice_ref.json" "$lres/result.json" <<'PY' || fail "lattice: the requeued job's answer differs"
+# with the uninterrupted search's cost, hops and expansions.
+if [[ $(id -u) -eq 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
+lattice_env=(DIMS=5 EXTENT=40 ALGO=dijkstra SEED=1 THREADS=1 CHECKPOINT_EVERY=1)
+lid=$(env "${lattice_env[@]}" timeout 60 sbatch --parsable --chdir "$work" \
+  --output "$work/lattice-%j.out" --ntasks 2 "$root/slurm/lattice.sbatch") || fail "lattice job not submitted"
+timeout 300 mpirun -np 2 --oversubscribe "$bins/hpcplan" grid --engine dense --dims 5 --extent 40 \
+  --algo dijkstra --density 0.40 --seed 1 --threads 1 --json > "$work/lattice_ref.json" \
+  2> "$work/lattice_ref.err" &
+ref_pid=$!
+lres=$work/results/lattice/$lid
+interrupt_requeue lattice "$lid" "$lres/lattice.ck.r0" "$lres/lattice.ck.r1"
+wait "$ref_pid" || fail "the uninterrupted lattice run failed (exit $?: 124 = over 300 s): $(cat "$work/lattice_ref.err")"
+grep -q "hpcplan job: restarting from $lres/lattice.ck" "$work/lattice-$lid.out" ||
+  fail "lattice: the requeued run did not restart from the checkpoints"
+python3 - "$work/lattice_ref.json" "$lres/result.json" <<'PY' || fail "lattice: the requeued job's answer differs"
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:])
 assert a["status"] == b["status"] == "solved", (a["status"], b["status"])
 for k in ("cost", "hops", "expanded"):
-    assert a[k] == b[k], (k, a[k], b[k])
+  assert a[k] == b[k], (k, a[k], b[k])
 print("lattice requeue ok: cost", b["cost"], "hops", b["hops"], "expanded", b["expanded"])
 PY
-else
-  echo "SKIP: lattice checkpoint and requeue: this hpcplan grid has no --checkpoint/--restart yet"
-fi
 
 # 12. The sweep interrupted in a cell (locally: SIGUSR1 to bench/sim_sweep.sh, as the sbatch's
 # forward does): exit 75, the cell's finished runs in its checkpoint and no CSV under the cell's
