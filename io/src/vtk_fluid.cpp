@@ -169,7 +169,11 @@ std::optional<std::uint64_t> series_frame(std::string_view name) {
   if (name.size() < 16 || !name.starts_with("fluid_") || !name.ends_with(".vtu")) return {};
   const std::string digits(name.substr(6, name.size() - 10));
   if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) return {};
-  return std::stoull(digits);
+  const std::uint64_t frame = std::stoull(digits);
+  // Only the name the frame is written under: fluid_0000005.vtu is not frame 5's file (that is
+  // fluid_000005.vtu), and counting both would list frame 5 twice.
+  if (tag_of(frame) != digits) return {};
+  return frame;
 }
 
 VtkSeries::VtkSeries(std::string dir) : dir_(std::move(dir)) {
