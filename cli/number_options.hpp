@@ -1,12 +1,15 @@
 #pragma once
 // Numeric options that refuse, with exit 2 and one line, what a plain CLI11 option lets through:
 // a negative value for an unsigned target (CLI11 wraps "-5" to 2^64 - 5), NaN and infinities,
-// and anything outside the option's range. Every numeric option of every subcommand is added
-// through add_number, so one table-driven test covers them all (tests/cli/test_cli.cpp).
+// an integer with a leading zero (CLI11 reads "010" as octal 8), and anything outside the
+// option's range. Every numeric option of every subcommand is added through add_number, so one
+// table-driven test covers them all (tests/cli/test_cli.cpp).
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -27,8 +30,15 @@ CLI::Validator number_check(long double lo, long double hi) {
         const long double v = std::strtold(begin, &end);
         if (end == begin || *end != '\0') return "'" + text + "' is not a number";
         if (!std::isfinite(v) || errno == ERANGE) return "'" + text + "' is not a finite number";
-        if constexpr (std::is_integral_v<T>)
+        if constexpr (std::is_integral_v<T>) {
           if (v != std::floor(v)) return "'" + text + "' is not a whole number";
+          // CLI11 reads an integer as C does (strtoll, base 0): "010" would be 8, not the 10
+          // checked here, so a leading zero is refused rather than misread.
+          const char* digits = begin + std::strspn(begin, " \t\n\v\f\r");
+          if (*digits == '+' || *digits == '-') ++digits;
+          if (digits[0] == '0' && std::isdigit(static_cast<unsigned char>(digits[1])))
+            return "'" + text + "' has a leading zero (which would make it octal)";
+        }
         if (v < lo || v > hi)
           return "'" + text + "' is out of range [" + CLI::detail::to_string(static_cast<T>(lo)) +
                  ", " + CLI::detail::to_string(static_cast<T>(hi)) + "]";

@@ -3,7 +3,6 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 
 #include "commands.hpp"
@@ -15,6 +14,7 @@
 #include "hpcplan/io/world_plan_json.hpp"
 #include "hpcplan/plan/world_planner.hpp"
 #include "number_options.hpp"
+#include "point_option.hpp"
 
 namespace hpcplan::cli {
 
@@ -25,29 +25,6 @@ struct WorldArgs {
   plan::WorldPlanOptions options;
   bool json = false;
 };
-
-template <int D>
-env::Vec<D> parse_point(const std::string& text, const char* option) {
-  env::Vec<D> p{};
-  std::stringstream in(text);
-  std::string item;
-  int k = 0;
-  while (std::getline(in, item, ',')) {
-    if (k == D) break;
-    try {
-      std::size_t used = 0;
-      p[k] = std::stod(item, &used);
-      if (used != item.size() || !std::isfinite(p[k])) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw InputError(std::string(option) + ": '" + item + "' is not a finite number");
-    }
-    ++k;
-  }
-  if (k != D || std::getline(in, item))
-    throw InputError(std::string(option) + " needs " + std::to_string(D) +
-                     " comma-separated coordinates, got '" + text + "'");
-  return p;
-}
 
 // The query point: the option when given, else the map's own line.
 template <int D>

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The whole test suite: install, build, run every test; then the unit, CLI, OMPL, MPI, fluid and
-# simulator suites again under AddressSanitizer + UndefinedBehaviorSanitizer, and the threaded
-# tests (stop token, cancellation, planners sharing a world, the simulator's planner thread,
-# the dense engine's and the fluid's OpenMP loops) under ThreadSanitizer.
+# simulator suites again under AddressSanitizer + UndefinedBehaviorSanitizer, a few seconds of
+# libFuzzer on every parser's fuzz target, and the threaded tests (stop token, cancellation,
+# planners sharing a world, the simulator's planner thread, the dense engine's and the fluid's
+# OpenMP loops) under ThreadSanitizer.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -60,6 +61,14 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktra
 # every scenario's step).
 (cd build-asan && ctest_run --timeout 900 -L "unit|cli|ompl|mpi|sph|sim" \
   -E '^(Cli\.EveryNumericOptionRefusesBadValues|WaterValidation\..*|Simulator\.DamBreakCrossing|Invariants\.ThreadCountDoesNotChangeTheResult)$')
+
+echo "== build (libFuzzer: the parsers' fuzz targets)"
+# Clang's libFuzzer in a tree of its own, holding only the fuzz targets: each compiles its
+# parsers' sources itself (tests/fuzz/CMakeLists.txt). Their replays over the committed corpus
+# ran in both stages above (label unit); here each target fuzzes for a few seconds from it.
+bash scripts/fuzz.sh --build
+echo "== tests (libFuzzer)"
+(cd build-fuzz && ctest_run --timeout 300 -L '^fuzz$')
 
 echo "== build (ThreadSanitizer: threaded tests)"
 # Built with clang and LLVM's OpenMP runtime: GCC's libgomp is not instrumented, so TSan cannot

@@ -46,7 +46,10 @@ BoxWorld::BoxWorld(Aabb<3> boundary, std::vector<Block> blocks)
   GridShape<3>::Coords counts;
   for (int k = 0; k < 3; ++k) {
     const double len = boundary_.hi[k] - boundary_.lo[k];
-    counts[k] = std::clamp(static_cast<int>(std::ceil(len / side)), 1, 64);
+    // Clamped before the conversion: a boundary far longer along one axis than the others
+    // (10 x 10 x 1e90) gives a count beyond int's range; NaN (inf / inf) counts as 1.
+    const double count = std::ceil(len / side);
+    counts[k] = count >= 64.0 ? 64 : count >= 1.0 ? static_cast<int>(count) : 1;
     buckets_.cell[k] = len / static_cast<double>(counts[k]);
   }
   buckets_.origin = boundary_.lo;

@@ -130,8 +130,11 @@ std::string encode_sim_checkpoint(const SimCheckpoint& c) {
 }
 
 SimCheckpoint decode_sim_checkpoint(std::string_view bytes, const std::string& name) {
-  const std::string_view payload =
-      checkpoint::open(bytes, kMagic, kFormat, "an hpcplan simulator checkpoint", name);
+  return decode_sim_checkpoint_payload(
+      checkpoint::open(bytes, kMagic, kFormat, "an hpcplan simulator checkpoint", name), name);
+}
+
+SimCheckpoint decode_sim_checkpoint_payload(std::string_view payload, const std::string& name) {
   auto damaged = [&](const std::string& what) {
     throw InputError("--restart '" + name + "': " + what + " (damaged)");
   };

@@ -164,6 +164,18 @@ std::string tag_of(std::uint64_t frame) {
 
 }  // namespace
 
+std::optional<std::uint64_t> series_frame(std::string_view name) {
+  // fluid_<at least 6 digits>.vtu (tag_of pads to 6; frames from 1,000,000 on have more).
+  if (name.size() < 16 || !name.starts_with("fluid_") || !name.ends_with(".vtu")) return {};
+  const std::string digits(name.substr(6, name.size() - 10));
+  if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) return {};
+  const std::uint64_t frame = std::stoull(digits);
+  // Only the name the frame is written under: fluid_0000005.vtu is not frame 5's file (that is
+  // fluid_000005.vtu), and counting both would list frame 5 twice.
+  if (tag_of(frame) != digits) return {};
+  return frame;
+}
+
 VtkSeries::VtkSeries(std::string dir) : dir_(std::move(dir)) {
   if (!dir_.empty() && dir_.back() != '/') dir_ += '/';
 }
@@ -173,14 +185,8 @@ void VtkSeries::resume(std::uint64_t frame, double frame_dt) {
   std::vector<std::uint64_t> frames;
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(dir_, ec)) {
-    const std::string name = e.path().filename().string();
-    // fluid_<at least 6 digits>.vtu (tag_of pads to 6; frames from 1,000,000 on have more).
-    if (name.size() < 16 || name.rfind("fluid_", 0) != 0 || name.substr(name.size() - 4) != ".vtu")
-      continue;
-    const std::string digits = name.substr(6, name.size() - 10);
-    if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
-    const std::uint64_t f = std::stoull(digits);
-    if (f <= frame) frames.push_back(f);
+    const std::optional<std::uint64_t> f = series_frame(e.path().filename().string());
+    if (f && *f <= frame) frames.push_back(*f);
   }
   std::sort(frames.begin(), frames.end());
   entries_.clear();

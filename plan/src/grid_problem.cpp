@@ -1,6 +1,5 @@
 #include "hpcplan/plan/grid_problem.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -94,28 +93,6 @@ std::string_view to_string(HeuristicKind h) {
 }
 std::string_view to_string(Connectivity c) {
   return c == Connectivity::seed_pairs ? "seed" : "full";
-}
-
-std::vector<int> parse_coordinates(std::string_view text, std::string_view what) {
-  std::vector<int> coords;
-  const auto fail = [&](const std::string& why) {
-    throw InputError(std::string(what) + " '" + std::string(text) + "' is malformed: " + why);
-  };
-  if (text.empty()) fail("empty");
-  std::size_t pos = 0;
-  while (true) {
-    const std::size_t comma = text.find(',', pos);
-    const std::string_view item =
-        text.substr(pos, comma == std::string_view::npos ? std::string_view::npos : comma - pos);
-    int value = 0;
-    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
-    if (item.empty() || ec != std::errc() || end != item.data() + item.size())
-      fail(std::string("'").append(item).append("' is not an integer"));
-    coords.push_back(value);
-    if (comma == std::string_view::npos) break;
-    pos = comma + 1;
-  }
-  return coords;
 }
 
 namespace {

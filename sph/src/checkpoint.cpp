@@ -77,8 +77,11 @@ std::string encode_checkpoint(const FluidOptions& o, std::uint64_t frame, const 
 }
 
 FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
-  const std::string_view payload =
-      checkpoint::open(bytes, kMagic, kFormat, "an hpcplan fluid checkpoint", name);
+  return decode_checkpoint_payload(
+      checkpoint::open(bytes, kMagic, kFormat, "an hpcplan fluid checkpoint", name), name);
+}
+
+FluidCheckpoint decode_checkpoint_payload(std::string_view payload, const std::string& name) {
   Reader p(payload, name);
   FluidCheckpoint c;
   const auto preset = p.get<std::uint8_t>();

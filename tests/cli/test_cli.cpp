@@ -157,6 +157,9 @@ TEST(Cli, BadInputExitsTwoWithOneLine) {
   expect_bad_input("grid --dims abc", "dims");
   expect_bad_input("grid --dims 2 --extent 1", "--extent");
   expect_bad_input("grid --dims 2 --extent 65536", "--extent");
+  // CLI11 would read "010" as octal 8: an integer with a leading zero is refused.
+  expect_bad_input("grid --dims 2 --extent 010", "leading zero");
+  expect_bad_input("grid --dims 2 --simulate-ranks 2,04", "leading zero");
   expect_bad_input("grid --dims 2 --start 1,2,3", "--start");
   expect_bad_input("grid --dims 2 --start 1,x", "--start");
   expect_bad_input("grid --dims 2 --goal 5,100", "outside the box");

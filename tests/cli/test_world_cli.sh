@@ -85,6 +85,10 @@ expect_bad "goal (11, 5, 5) is outside the boundary" map3d --map "$MAPS/single_b
 expect_bad "unknown algorithm 'dfs'" map3d --map "$MAPS/single_box.txt" --algo dfs
 expect_bad "unknown algorithm 'ompl:nope' for map3d" map3d --map "$MAPS/single_box.txt" --algo ompl:nope
 expect_bad "needs 3 comma-separated" map3d --map "$MAPS/single_box.txt" --start 1,2
+# One coordinate too many, or a trailing comma, is refused too (both were once taken as x,y,z).
+expect_bad "needs 3 comma-separated" map3d --map "$MAPS/single_box.txt" --start 1,2,3,4
+expect_bad "needs 3 comma-separated" map3d --map "$MAPS/single_box.txt" --goal 9,5,5,
+expect_bad "needs 2 comma-separated" sphere2d --map "$MAPS/sphere_world.txt" --start 1,1,999
 expect_bad "resolution" map3d --map "$MAPS/single_box.txt" --resolution -1
 expect_bad "resolution" map3d --map "$MAPS/single_box.txt" --resolution 50
 expect_bad "weight" map3d --map "$MAPS/single_box.txt" --algo wastar --weight 0.5

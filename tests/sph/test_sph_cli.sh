@@ -125,8 +125,11 @@ echo "sph_cli: gauges ok"
 "$bin" sph --preset seed --scenario dynamic --particles 800 --frames 20 --seed 3 \
   --vtk "$dir/ck_part" --every 10 --checkpoint "$dir/ck.bin" --checkpoint-every 10 > /dev/null ||
   fail "checkpoint: the first half failed"
+# A name that is not one the series writes (frame 10's is fluid_000010.vtu) is not listed.
+touch "$dir/ck_part/fluid_0000010.vtu"
 "$bin" sph --restart "$dir/ck.bin" --frames 40 --vtk "$dir/ck_part" --every 10 --json \
   > "$dir/ck.json" || fail "checkpoint: the restart failed"
+rm "$dir/ck_part/fluid_0000010.vtu"
 for f in "$dir"/ck_full/*; do
   cmp -s "$f" "$dir/ck_part/$(basename "$f")" || fail "checkpoint: $(basename "$f") differs after a restart"
 done

@@ -36,6 +36,10 @@ std::string sim_checkpoint_options(const sim::SimOptions& options, bool trajecto
 std::string encode_sim_checkpoint(const SimCheckpoint& checkpoint);
 // InputError "--restart 'NAME': ..." when damaged, foreign or of another version.
 SimCheckpoint decode_sim_checkpoint(std::string_view bytes, const std::string& name);
+// What decode_sim_checkpoint reads inside the envelope (the CBOR payload, after the envelope's
+// checks and checksum): the fuzz target (tests/fuzz) feeds it directly, since a mutated file
+// almost never passes the checksum. The same checks, the same InputErrors.
+SimCheckpoint decode_sim_checkpoint_payload(std::string_view payload, const std::string& name);
 SimCheckpoint read_sim_checkpoint(const std::string& path);
 
 }  // namespace hpcplan::io

@@ -12,7 +12,9 @@
 // never sees a series naming a frame that is not complete.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hpcplan/sph/fluid_state.hpp"
@@ -24,6 +26,10 @@ std::string vtu_boxes(const std::vector<sph::MovingBox>& boxes);
 std::string vtu_robot(const std::array<double, 3>& robot, const std::array<double, 3>& goal,
                       const std::vector<std::array<double, 3>>& plan,
                       const std::vector<std::array<double, 3>>& trail);
+
+// The frame a series file's name holds ("fluid_000042.vtu" -> 42), or none for any other name:
+// how VtkSeries::resume reads the directory (and what the fuzz target feeds names to).
+std::optional<std::uint64_t> series_frame(std::string_view file_name);
 
 class VtkSeries {
  public:

@@ -48,6 +48,10 @@ std::string encode_checkpoint(const FluidOptions& options, std::uint64_t frame,
 // The checkpoint in `bytes`, read from `name` (for messages). InputError when damaged,
 // foreign, of another version or of a problem make_fluid does not rebuild to the same counts.
 FluidCheckpoint decode_checkpoint(std::string_view bytes, const std::string& name);
+// What decode_checkpoint reads inside the envelope (its payload, after the envelope's checks
+// and checksum): the fuzz target (tests/fuzz) feeds it directly, since a mutated file almost
+// never passes the checksum. The same checks, the same InputErrors.
+FluidCheckpoint decode_checkpoint_payload(std::string_view payload, const std::string& name);
 
 // Reads and decodes a file: InputError if it cannot be read, as decode_checkpoint otherwise.
 FluidCheckpoint read_checkpoint(const std::string& path);
