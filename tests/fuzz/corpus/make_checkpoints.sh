@@ -40,4 +40,6 @@ s=fuzz_sim_checkpoint
 cp "$tmp/two_runs.ckpt" "$s/two_runs.ckpt"
 payload "$tmp/two_runs.ckpt" "$s/two_runs.payload"
 payload "$tmp/trajectory.ckpt" "$s/trajectory.payload"
+# (The dense engine's grid checkpoint, when it comes: its seeds here too, a small file and its
+# payload into fuzz_grid_checkpoint/.)
 echo "make_checkpoints: seeds written into $(pwd)/{$f,$s}"
