@@ -40,6 +40,12 @@ s=fuzz_sim_checkpoint
 cp "$tmp/two_runs.ckpt" "$s/two_runs.ckpt"
 payload "$tmp/two_runs.ckpt" "$s/two_runs.payload"
 payload "$tmp/trajectory.ckpt" "$s/trajectory.payload"
-# (The dense engine's grid checkpoint, when it comes: its seeds here too, a small file and its
-# payload into fuzz_grid_checkpoint/.)
+# The dense engine's grid checkpoint: its target writes its own seeds (a genuine file and its
+# engine payload for each of its four runs) when asked, from the build's replay binary.
+grid=$(dirname "$bin")/fuzz_grid_checkpoint_replay
+if [[ -x $grid ]]; then
+  rm -f fuzz_grid_checkpoint/*
+  echo x > "$tmp/any"
+  HPCPLAN_FUZZ_WRITE_SEEDS=$PWD/fuzz_grid_checkpoint "$grid" --mutations 1 "$tmp/any" > /dev/null
+fi
 echo "make_checkpoints: seeds written into $(pwd)/{$f,$s}"
