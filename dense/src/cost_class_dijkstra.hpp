@@ -404,7 +404,9 @@ class CostClassDijkstra {
       const auto classes = r.get<std::uint64_t>();
       for (std::uint64_t c = 0; c < classes; ++c) {
         const auto key = r.get<ClassKey>();
-        if (key.ones < 0 || key.root2 < 0 || key.root3 < 0 || key.hops < 0 || t.pending.count(key))
+        // (A path of more moves than the lattice has free states cannot be a shortest one.)
+        if (key.ones < 0 || key.root2 < 0 || key.root3 < 0 || key.hops < 0 ||
+            static_cast<std::uint64_t>(key.hops) > free_states_ || t.pending.count(key))
           r.fail("lists a class twice or a negative cost (damaged)");
         std::vector<Entry>& list = t.pending[key];
         r.get_array(list);

@@ -338,6 +338,10 @@ class LevelBfs {
     reached = r.get<std::uint64_t>();
     peak = r.get<std::uint64_t>();
     list_peak = r.get<std::uint64_t>();
+    // A BFS over N free states has fewer than N levels: a larger count would send the walk
+    // back round the lattice for as many steps (found by fuzz_grid_checkpoint).
+    if (level >= free_states_ || reached > free_states_ || peak > reached)
+      r.fail("holds counts this lattice cannot have (damaged)");
     r.get_array(std::span<Word>(codes_.data(), codes_.size()));
     for (Thread& t : threads_) {
       t.expanded = r.get<std::uint64_t>();
