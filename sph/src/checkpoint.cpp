@@ -66,7 +66,7 @@ std::string encode_checkpoint(const FluidOptions& o, std::uint64_t frame, const 
   for (const MovingBox& b : s.boxes) w.put(b);
   const std::uint64_t n = s.particles.size();
   w.put(n);
-#define HPCPLAN_SPH_SAVE_FIELD(type, name) w.put_array(s.particles.name);
+#define HPCPLAN_SPH_SAVE_FIELD(type, name) w.put_array(s.particles.name.span());
   HPCPLAN_SPH_PARTICLE_FIELDS(HPCPLAN_SPH_SAVE_FIELD)
 #undef HPCPLAN_SPH_SAVE_FIELD
   w.put<std::uint64_t>(probe_rows.size());
@@ -115,9 +115,10 @@ FluidCheckpoint decode_checkpoint_payload(std::string_view payload, const std::s
       p.fail("was computed with other fluid parameters (another build's physics or presets)");
   // The walls as they are built (by id), to check the saved ones against: the flags and
   // positions only, not a copy of the whole state.
-  const std::vector<std::uint8_t> built_wall = s.particles.wall;
-  const std::vector<double> built_x = s.particles.x, built_y = s.particles.y,
-                            built_z = s.particles.z;
+  const std::vector<std::uint8_t> built_wall = s.particles.wall.to_vector();
+  const std::vector<double> built_x = s.particles.x.to_vector(),
+                            built_y = s.particles.y.to_vector(),
+                            built_z = s.particles.z.to_vector();
   s.time = p.get<double>();
   s.substeps = p.get<std::uint64_t>();
   const auto fluid = p.get<std::uint64_t>();
@@ -131,7 +132,7 @@ FluidCheckpoint decode_checkpoint_payload(std::string_view payload, const std::s
   if (n != s.particles.size())
     p.fail("holds " + std::to_string(n) + " particles; its options build " +
            std::to_string(s.particles.size()));
-#define HPCPLAN_SPH_LOAD_FIELD(type, name) p.get_array(s.particles.name, n);
+#define HPCPLAN_SPH_LOAD_FIELD(type, name) p.get_array(s.particles.name.span());
   HPCPLAN_SPH_PARTICLE_FIELDS(HPCPLAN_SPH_LOAD_FIELD)
 #undef HPCPLAN_SPH_LOAD_FIELD
   // A frame ends at a multiple of frame_dt (Fluid::advance_frame).

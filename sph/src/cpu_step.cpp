@@ -108,7 +108,9 @@ class CpuBackend final : public StepBackend {
         [&](std::size_t i, std::uint32_t j) { return !p.wall[i] || !p.wall[j]; });
     list_grid_used_ = &grid;
     if (skin > 0.0) {
-      x0_ = p.x, y0_ = p.y, z0_ = p.z;
+      x0_.assign(p.x.begin(), p.x.end());
+      y0_.assign(p.y.begin(), p.y.end());
+      z0_.assign(p.z.begin(), p.z.end());
       half_skin2_ = 0.25 * skin * skin;
     }
   }

@@ -318,6 +318,7 @@ FluidState make_fluid(const FluidOptions& o) {
   validate(o);
   FluidState s = o.preset == Preset::seed ? make_seed(o) : make_water(o);
   s.seed = o.seed;
+  s.particles.shrink_to_fit();  // built by add(): the blocks' spare growth given back
   return s;
 }
 
