@@ -28,57 +28,124 @@ double mean(const std::vector<double>& xs) {
 
 }  // namespace
 
+Table sim_runs_table(const std::vector<sim::RunRecord>& runs, bool timings) {
+  Table t;
+  t.columns = {"scenario",
+               "algorithm",
+               "run_number",
+               "success",
+               "time_to_goal_s",
+               "total_replans",
+               "failed_replans",
+               "avg_plan_time_us",
+               "min_plan_time_us",
+               "max_plan_time_us",
+               "avg_path_length",
+               "avg_path_nodes",
+               "avg_path_divergence",
+               "particle_count",
+               "contacts",
+               "contact_frames",
+               "contact_time_s",
+               "min_clearance",
+               "max_overlap",
+               "seed_avg_path_length",
+               "sim_time_to_goal_s",
+               "wall_time_to_goal_s",
+               "p50_plan_time_us",
+               "p95_plan_time_us",
+               "p99_plan_time_us",
+               "end",
+               "fail_start_blocked",
+               "fail_goal_blocked",
+               "fail_disconnected",
+               "fail_budget",
+               "cancelled",
+               "start_escapes",
+               "goal_escapes",
+               "sph_ms_per_frame",
+               "snapshot_ms",
+               "frames",
+               "distance_travelled",
+               "start_goal_distance",
+               "seed",
+               "pace",
+               "controller",
+               "contact_rate",
+               "reactive_overrides",
+               "occupancy"};
+  // A timing column is empty without timings, so that lockstep files compare byte for byte.
+  auto time = [&](double v) { return timings ? Cell(v) : Cell(); };
+  for (const sim::RunRecord& r : runs)
+    t.rows.push_back({r.scenario,
+                      r.algorithm,
+                      whole(r.run_number),
+                      whole(r.success() ? 1 : 0),
+                      r.sim_time_s,
+                      whole(r.total_replans),
+                      whole(r.failed_replans),
+                      time(r.avg_plan_time_us),
+                      time(r.min_plan_time_us),
+                      time(r.max_plan_time_us),
+                      r.avg_path_length,
+                      r.avg_path_nodes,
+                      r.avg_path_divergence,
+                      whole(r.particle_count),
+                      whole(r.contacts),
+                      whole(r.contact_frames),
+                      r.contact_time_s,
+                      r.min_clearance,
+                      r.max_overlap,
+                      r.seed_avg_path_length,
+                      r.success() ? Cell(r.sim_time_s) : Cell(),
+                      r.success() ? time(r.wall_time_s) : Cell(),
+                      time(r.p50_plan_time_us),
+                      time(r.p95_plan_time_us),
+                      time(r.p99_plan_time_us),
+                      std::string(sim::to_string(r.end)),
+                      whole(r.start_blocked),
+                      whole(r.goal_blocked),
+                      whole(r.disconnected),
+                      whole(r.budget),
+                      whole(r.cancelled),
+                      whole(r.start_escapes),
+                      whole(r.goal_escapes),
+                      time(r.sph_ms_per_frame),
+                      time(r.snapshot_ms),
+                      whole(r.frames),
+                      r.distance_travelled,
+                      r.start_goal_distance,
+                      whole(r.seed),
+                      r.pace,
+                      r.controller,
+                      r.contact_rate(),
+                      whole(r.reactive_overrides),
+                      r.occupancy});
+  return t;
+}
+
+Table sim_replans_table(const std::vector<sim::ReplanRecord>& replans, bool timings) {
+  Table t;
+  t.columns = {"run",       "frame",     "sim_time_s",    "algorithm",    "status",     "reason",
+               "plan_us",   "expanded",  "length",        "waypoints",    "divergence", "world_us",
+               "search_us", "smooth_us", "start_escaped", "goal_escaped", "incremental"};
+  auto time = [&](double v) { return timings ? Cell(v) : Cell(); };
+  for (const sim::ReplanRecord& r : replans)
+    t.rows.push_back({whole(r.run), whole(r.frame), r.sim_time_s, r.algorithm,
+                      std::string(to_string(r.status)), std::string(r.reason()), time(r.plan_us),
+                      whole(r.expanded), r.length, whole(r.waypoints),
+                      r.divergence >= 0 ? Cell(r.divergence) : Cell(), time(r.world_us),
+                      time(r.search_us), time(r.smooth_us), whole(r.start_escaped ? 1 : 0),
+                      whole(r.goal_escaped ? 1 : 0), std::string(plan::to_string(r.incremental))});
+  return t;
+}
+
 std::string sim_runs_csv(const std::vector<sim::RunRecord>& runs, bool header, bool timings) {
-  std::string out;
-  if (header)
-    out +=
-        "scenario,algorithm,run_number,success,time_to_goal_s,total_replans,failed_replans,"
-        "avg_plan_time_us,min_plan_time_us,max_plan_time_us,avg_path_length,avg_path_nodes,"
-        "avg_path_divergence,particle_count,contacts,contact_frames,contact_time_s,min_clearance,"
-        "max_overlap,seed_avg_path_length,sim_time_to_goal_s,"
-        "wall_time_to_goal_s,p50_plan_time_us,p95_plan_time_us,p99_plan_time_us,end,"
-        "fail_start_blocked,fail_goal_blocked,fail_disconnected,fail_budget,cancelled,"
-        "start_escapes,goal_escapes,sph_ms_per_frame,snapshot_ms,frames,distance_travelled,"
-        "start_goal_distance,seed,pace,controller,contact_rate,reactive_overrides,occupancy\n";
-  auto t = [&](double v) { return timings ? num(v) : std::string(); };
-  for (const sim::RunRecord& r : runs) {
-    out +=
-        r.scenario + "," + r.algorithm + "," + std::to_string(r.run_number) + "," +
-        (r.success() ? "1" : "0") + "," + num(r.sim_time_s) + "," +
-        std::to_string(r.total_replans) + "," + std::to_string(r.failed_replans) + "," +
-        t(r.avg_plan_time_us) + "," + t(r.min_plan_time_us) + "," + t(r.max_plan_time_us) + "," +
-        num(r.avg_path_length) + "," + num(r.avg_path_nodes) + "," + num(r.avg_path_divergence) +
-        "," + std::to_string(r.particle_count) + "," + std::to_string(r.contacts) + "," +
-        std::to_string(r.contact_frames) + "," + num(r.contact_time_s) + "," +
-        num(r.min_clearance) + "," + num(r.max_overlap) + "," + num(r.seed_avg_path_length) + "," +
-        (r.success() ? num(r.sim_time_s) : "") + "," + (r.success() ? t(r.wall_time_s) : "") + "," +
-        t(r.p50_plan_time_us) + "," + t(r.p95_plan_time_us) + "," + t(r.p99_plan_time_us) + "," +
-        std::string(sim::to_string(r.end)) + "," + std::to_string(r.start_blocked) + "," +
-        std::to_string(r.goal_blocked) + "," + std::to_string(r.disconnected) + "," +
-        std::to_string(r.budget) + "," + std::to_string(r.cancelled) + "," +
-        std::to_string(r.start_escapes) + "," + std::to_string(r.goal_escapes) + "," +
-        t(r.sph_ms_per_frame) + "," + t(r.snapshot_ms) + "," + std::to_string(r.frames) + "," +
-        num(r.distance_travelled) + "," + num(r.start_goal_distance) + "," +
-        std::to_string(r.seed) + "," + r.pace + "," + r.controller + "," + num(r.contact_rate()) +
-        "," + std::to_string(r.reactive_overrides) + "," + r.occupancy + "\n";
-  }
-  return out;
+  return to_csv(sim_runs_table(runs, timings), header);
 }
 
 std::string sim_replans_csv(const std::vector<sim::ReplanRecord>& replans, bool timings) {
-  std::string out =
-      "run,frame,sim_time_s,algorithm,status,reason,plan_us,expanded,length,waypoints,divergence,"
-      "world_us,search_us,smooth_us,start_escaped,goal_escaped,incremental\n";
-  auto t = [&](double v) { return timings ? num(v) : std::string(); };
-  for (const sim::ReplanRecord& r : replans)
-    out += std::to_string(r.run) + "," + std::to_string(r.frame) + "," + num(r.sim_time_s) + "," +
-           r.algorithm + "," + std::string(to_string(r.status)) + "," + std::string(r.reason()) +
-           "," + t(r.plan_us) + "," + std::to_string(r.expanded) + "," + num(r.length) + "," +
-           std::to_string(r.waypoints) + "," + (r.divergence >= 0 ? num(r.divergence) : "") + "," +
-           t(r.world_us) + "," + t(r.search_us) + "," + t(r.smooth_us) + "," +
-           (r.start_escaped ? "1" : "0") + "," + (r.goal_escaped ? "1" : "0") + "," +
-           std::string(plan::to_string(r.incremental)) + "\n";
-  return out;
+  return to_csv(sim_replans_table(replans, timings));
 }
 
 nlohmann::json to_json(const SimInvocation& s) {

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "hpcplan/io/table.hpp"
 #include "hpcplan/sim/simulator.hpp"
 
 namespace hpcplan::io {
@@ -21,7 +22,13 @@ struct SimInvocation {
   std::string interrupted_by, checkpoint;
 };
 
-// Header + one row per run. `timings`: false writes timing columns as empty, so that two
+// The per-run rows (seed 000's 14 columns first, then hpcplan's) and the per-replan rows.
+// `timings`: false leaves the timing cells empty, so that two lockstep runs with the same seed
+// give identical rows.
+Table sim_runs_table(const std::vector<sim::RunRecord>& runs, bool timings = true);
+Table sim_replans_table(const std::vector<sim::ReplanRecord>& replans, bool timings = true);
+
+// Their CSV text (to_csv): header + one row per run. `timings`: false writes timing columns as empty, so that two
 // lockstep runs with the same seed give identical bytes.
 std::string sim_runs_csv(const std::vector<sim::RunRecord>& runs, bool header = true,
                          bool timings = true);
