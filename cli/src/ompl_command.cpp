@@ -9,11 +9,11 @@
 #include <ompl/util/Console.h>
 
 #include "commands.hpp"
+#include "hpcplan/cli/number_options.hpp"
 #include "hpcplan/core/atomic_file.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/io/ompl_bench_csv.hpp"
 #include "hpcplan/plan/ompl_benchmark.hpp"
-#include "number_options.hpp"
 
 namespace hpcplan::cli {
 namespace {

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "commands.hpp"
+#include "hpcplan/cli/point_option.hpp"
+#include "hpcplan/cli/world_options.hpp"
 #include "hpcplan/core/atomic_file.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/env/box_map_io.hpp"
@@ -13,8 +15,6 @@
 #include "hpcplan/io/path_csv.hpp"
 #include "hpcplan/io/world_plan_json.hpp"
 #include "hpcplan/plan/world_planner.hpp"
-#include "number_options.hpp"
-#include "point_option.hpp"
 
 namespace hpcplan::cli {
 
@@ -60,25 +60,11 @@ int run(const WorldArgs& a, const Map& map) {
 }
 
 void add_common(CLI::App* cmd, const std::shared_ptr<WorldArgs>& args, const std::string& world,
-                const char* point, double resolution) {
-  auto& o = args->options;
-  o.resolution = resolution;
+                const char* point) {
   cmd->add_option("--map", args->map, "World file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--start", args->start, std::string("Start ") + point + " (default: the map's)");
   cmd->add_option("--goal", args->goal, std::string("Goal ") + point + " (default: the map's)");
-  cmd->add_option("--algo", o.algo,
-                  "Planner (hpcplan planners --world " + world + "): " + planner_names(world))
-      ->capture_default_str();
-  add_param(cmd, "resolution", o.resolution)->capture_default_str();
-  add_param(cmd, "spacing", o.spacing)->capture_default_str();
-  add_param(cmd, "weight", o.weight)->capture_default_str();
-  add_param(cmd, "seed", o.seed)->capture_default_str();
-  add_param(cmd, "time", o.time_s)->capture_default_str();
-  add_param(cmd, "step", o.step)->capture_default_str();
-  add_param(cmd, "samples", o.samples_per_expansion)->capture_default_str();
-  add_param(cmd, "max_states", o.max_states);
-  add_param(cmd, "shortcut", o.shortcut);
-  add_param(cmd, "stop_at_first", o.stop_at_first);
+  add_world_planner_options(cmd, args->options, world);
   cmd->add_flag("--json", args->json, "Print one JSON object instead of a summary");
   cmd->add_option("--path-out", args->path_out, "Write the path as CSV (atomically)");
   cmd->add_option("--output", args->output, "Also write the JSON result to this file (atomically)");
@@ -86,9 +72,9 @@ void add_common(CLI::App* cmd, const std::shared_ptr<WorldArgs>& args, const std
 
 template <class Load>
 Action register_world_command(CLI::App& app, const std::string& name, const std::string& about,
-                              const char* point, double resolution, Load load) {
+                              const char* point, Load load) {
   auto args = std::make_shared<WorldArgs>();
-  add_common(app.add_subcommand(name, about), args, name, point, resolution);
+  add_common(app.add_subcommand(name, about), args, name, point);
   return [args, name, load](const Context& context) {
     if (context.comm && context.comm->size() > 1)
       throw InputError(name + " runs in one process; start it without mpirun");
@@ -101,13 +87,13 @@ Action register_world_command(CLI::App& app, const std::string& name, const std:
 }  // namespace
 
 Action register_map3d_command(CLI::App& app) {
-  return register_world_command(app, "map3d", "Plan in a 3D box map (seeds 001/004)", "x,y,z", 0.1,
+  return register_world_command(app, "map3d", "Plan in a 3D box map (seeds 001/004)", "x,y,z",
                                 env::load_box_map);
 }
 
 Action register_sphere2d_command(CLI::App& app) {
   return register_world_command(app, "sphere2d", "Plan in a 2D sphere world (seed 003)", "x,y",
-                                0.25, env::load_sphere_map);
+                                env::load_sphere_map);
 }
 
 }  // namespace hpcplan::cli

@@ -23,8 +23,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "../../cli/number_options.hpp"
-#include "../../cli/point_option.hpp"
+#include "hpcplan/cli/number_options.hpp"
+#include "hpcplan/cli/point_option.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/plan/grid_problem.hpp"
 

@@ -20,8 +20,10 @@
 
 namespace hpcplan::cli {
 
+// The validator's description, shown in --help after the type and read by the Python module's
+// signatures, is the range when the option has one of its own ("[2, 65535]"), else "NUMBER".
 template <class T>
-CLI::Validator number_check(long double lo, long double hi) {
+CLI::Validator number_check(long double lo, long double hi, bool show_range = true) {
   return CLI::Validator(
       [lo, hi](std::string& text) -> std::string {
         const char* begin = text.c_str();
@@ -44,7 +46,10 @@ CLI::Validator number_check(long double lo, long double hi) {
                  ", " + CLI::detail::to_string(static_cast<T>(hi)) + "]";
         return {};
       },
-      "NUMBER");
+      show_range ? "[" + CLI::detail::to_string(static_cast<T>(lo)) + ", " +
+                       CLI::detail::to_string(static_cast<T>(hi)) + "]"
+                 : std::string("NUMBER"),
+      "number");
 }
 
 template <class T>
@@ -59,12 +64,13 @@ struct NumberOf<std::vector<T>> {  // a delimited list: each element is checked
 // An option whose values must lie in [lo, hi] (and within the target type).
 template <class Target>
 CLI::Option* add_number(CLI::App* cmd, const std::string& name, Target& target,
-                        const std::string& help, long double lo, long double hi) {
+                        const std::string& help, long double lo, long double hi,
+                        bool show_range = true) {
   using T = typename NumberOf<Target>::type;
   static_assert(std::is_arithmetic_v<T>);
   lo = std::max<long double>(lo, std::numeric_limits<T>::lowest());
   hi = std::min<long double>(hi, std::numeric_limits<T>::max());
-  return cmd->add_option(name, target, help)->check(number_check<T>(lo, hi));
+  return cmd->add_option(name, target, help)->check(number_check<T>(lo, hi, show_range));
 }
 
 // Any value of the target's type (no negative one for an unsigned type, nothing non-finite).
@@ -73,7 +79,7 @@ CLI::Option* add_number(CLI::App* cmd, const std::string& name, Target& target,
                         const std::string& help) {
   using T = typename NumberOf<Target>::type;
   return add_number(cmd, name, target, help, std::numeric_limits<T>::lowest(),
-                    std::numeric_limits<T>::max());
+                    std::numeric_limits<T>::max(), false);
 }
 
 // An option the planner registry declares: its name, range and help come from there, so the

@@ -1,0 +1,42 @@
+#pragma once
+// hpcplan grid's options that every front end shares (the executable; the Python module's
+// hpcplan.grid.solve): registered on a CLI11 command, read into the problem and the search's
+// options with the checks that go with them, and the report's finishing touches. The
+// executable adds its distributed and prediction options and --json (src/grid_command.cpp).
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "hpcplan/cli/run_control.hpp"
+#include "hpcplan/plan/grid_planner.hpp"
+
+namespace hpcplan::cli {
+
+struct GridArgs {
+  GridProblem problem;
+  GridSearchOptions options;
+  std::string algo = "astar";
+  std::string heuristic = "lattice";
+  std::string connectivity = "seed";
+  std::string engine = "auto";
+  std::string start, goal, output;
+  double weight = 2.0;
+  bool no_jump_points = false;
+  const CLI::Option* weight_option = nullptr;  // given or not (only weighted A* takes one)
+};
+
+// Registers the problem, search, checkpoint and output options on `command`.
+void add_grid_options(CLI::App* command, GridArgs& args);
+
+// After parsing: the text options read into the problem and the search's options (InputError
+// for a bad one), --output and this rank's checkpoint file (FILE, or FILE.r<rank> of `ranks`)
+// checked writable, and `control` installed: its cancel always, its interruption with
+// --checkpoint only (only then has a signal somewhere to save the run).
+void prepare_grid_run(GridArgs& args, int rank, int ranks, const RunControl& control);
+
+// The report's checkpoint fields (what it restarted from, what interrupted it and where it was
+// saved), and --output written; returns the report as JSON (`hpcplan grid --json`'s object).
+nlohmann::json finish_grid_run(GridReport& report, const GridArgs& args, const RunControl& control);
+
+}  // namespace hpcplan::cli
