@@ -16,7 +16,7 @@ command -v clang++ >/dev/null || { echo "fuzz: clang++ is needed (apt-get instal
 # at -O1 with line tables like the sanitizer builds of scripts/test.sh.
 bash scripts/build.sh build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
-  -DHPCPLAN_BUILD_BENCH=OFF -DHPCPLAN_BUILD_CLI=OFF --target hpcplan_fuzz
+  -DHPCPLAN_BUILD_BENCH=OFF -DHPCPLAN_BUILD_CLI=OFF -DHPCPLAN_BUILD_PYTHON=OFF --target hpcplan_fuzz
 [[ ${1:-} == --build ]] && exit 0
 seconds=${1:-60}
 shift || true

@@ -28,6 +28,7 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin procps
   libompl-dev ompl-demos python3-matplotlib libnanoflann-dev
   python3-vtk9 ffmpeg
+  python3-dev python3-numpy pybind11-dev python3-pybind11 python3-pytest
   slurm-wlm munge
   clang libomp-dev libclang-rt-dev time
 )

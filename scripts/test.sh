@@ -47,7 +47,7 @@ sanitizer_flags="-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG"
 
 echo "== build (ASan + UBSan)"
 bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo "$sanitizer_flags" \
-  -DHPCPLAN_SANITIZE=address,undefined -DHPCPLAN_BUILD_BENCH=OFF
+  -DHPCPLAN_SANITIZE=address,undefined -DHPCPLAN_BUILD_BENCH=OFF -DHPCPLAN_BUILD_PYTHON=OFF
 echo "== tests (ASan + UBSan)"
 # (The MPI suites run without leak checks: tests/mpi/CMakeLists.txt says why.)
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
@@ -78,8 +78,9 @@ echo "== build (ThreadSanitizer: threaded tests)"
 # The compilers as cache options, not CC/CXX, which a tree configured earlier with g++ ignores.
 bash scripts/build.sh build-tsan -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo "$sanitizer_flags" -DHPCPLAN_SANITIZE=thread -DHPCPLAN_BUILD_BENCH=OFF -DHPCPLAN_BUILD_CLI=OFF \
+  -DHPCPLAN_BUILD_PYTHON=OFF \
   --target hpcplan_thread_tests --target hpcplan_sim_tests --target hpcplan_dense_thread_tests \
-  --target hpcplan_sph_tests
+  --target hpcplan_sph_tests --target hpcplan_python_worker_tests
 echo "== tests (ThreadSanitizer)"
 # ignore_noninstrumented_modules: accesses inside the uninstrumented runtime itself are Archer's
 # to describe, not TSan's to report.

@@ -1,0 +1,138 @@
+#include "bridge.hpp"
+
+#include <Python.h>
+#include <pythread.h>
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <utility>
+
+#include "hpcplan/cli/option_catalog.hpp"
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/python/polled_worker.hpp"
+
+namespace hpcplan::python {
+
+void parse_options(CLI::App& command, const std::vector<std::string>& tokens) {
+  std::vector<std::string> reversed(tokens.rbegin(), tokens.rend());  // CLI11's order
+  try {
+    command.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    throw InputError(e.what());
+  }
+}
+
+py::list describe(const CLI::App& command) {
+  py::list out;
+  for (const cli::OptionInfo& o : cli::describe_options(command)) {
+    py::dict d;
+    d["name"] = o.name;
+    d["option"] = o.option;
+    d["kind"] = o.kind;
+    d["default"] = o.default_text;
+    d["required"] = o.required;
+    d["range"] = o.range;
+    d["choices"] = o.choices;
+    d["help"] = o.help;
+    d["group"] = o.group;
+    out.append(std::move(d));
+  }
+  return out;
+}
+
+py::object to_python(const nlohmann::json& v) {
+  switch (v.type()) {
+    case nlohmann::json::value_t::null:
+    case nlohmann::json::value_t::discarded:
+      return py::none();
+    case nlohmann::json::value_t::boolean:
+      return py::bool_(v.get<bool>());
+    case nlohmann::json::value_t::number_integer:
+      return py::int_(v.get<std::int64_t>());
+    case nlohmann::json::value_t::number_unsigned:
+      return py::int_(v.get<std::uint64_t>());
+    case nlohmann::json::value_t::number_float:
+      return py::float_(v.get<double>());
+    case nlohmann::json::value_t::string:
+      return py::str(v.get_ref<const std::string&>());
+    case nlohmann::json::value_t::array: {
+      py::list list;
+      for (const nlohmann::json& item : v) list.append(to_python(item));
+      return list;
+    }
+    case nlohmann::json::value_t::object: {
+      py::dict dict;
+      for (auto it = v.begin(); it != v.end(); ++it)
+        dict[py::str(it.key())] = to_python(it.value());
+      return dict;
+    }
+    case nlohmann::json::value_t::binary:
+      break;
+  }
+  throw RunError("a result holds a value JSON cannot carry");
+}
+
+namespace {
+
+// One worker for the main thread's calls: the main thread makes one call at a time anyway, and
+// the worker's OpenMP team then lives from call to call. Never destroyed (the interpreter may
+// still call into the module while static objects are torn down).
+PolledWorker& main_thread_worker() {
+  static PolledWorker* worker = new PolledWorker;
+  return *worker;
+}
+
+bool on_main_thread() {
+  static const unsigned long main_ident =
+      py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
+  return PyThread_get_thread_ident() == main_ident;
+}
+
+// The control of one call: its own stop source (linked to the user's) and interruption flag.
+struct CallStop {
+  std::stop_source cancel;
+  std::atomic<const char*> interruption{nullptr};
+};
+
+}  // namespace
+
+void run_released(const std::function<void(const cli::RunControl&)>& work, const StopSource* stop,
+                  OnCtrlC on_ctrl_c) {
+  auto state = std::make_shared<CallStop>();
+  cli::RunControl control;
+  control.cancel = state->cancel.get_token();
+  control.interruption = [state] { return state->interruption.load(); };
+  std::optional<std::stop_callback<std::function<void()>>> link;
+  if (stop != nullptr)
+    link.emplace(stop->token(), std::function<void()>([state] { state->cancel.request_stop(); }));
+
+  if (!on_main_thread()) {
+    py::gil_scoped_release release;
+    work(control);
+    return;
+  }
+  std::optional<py::error_already_set> raised;
+  const std::function<void()> job = [&] { work(control); };
+  const std::function<void()> poll = [&] {
+    if (raised) return;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() == 0) return;
+    raised.emplace();  // takes the handler's exception (KeyboardInterrupt) out of Python
+    state->interruption = "KeyboardInterrupt";
+    if (on_ctrl_c == OnCtrlC::cancel) state->cancel.request_stop();
+  };
+  std::exception_ptr failure;
+  {
+    py::gil_scoped_release release;
+    try {
+      main_thread_worker().run(job, poll, std::chrono::milliseconds(20));
+    } catch (...) {
+      failure = std::current_exception();
+    }
+  }
+  if (raised) throw std::move(*raised);  // Ctrl-C wins over what the stopped work said
+  if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace hpcplan::python

@@ -1,0 +1,89 @@
+#pragma once
+// What every binding of the Python module shares: parsing keyword arguments with the CLI's own
+// options, JSON results as Python objects, NumPy arrays, the user's stop source, and running a
+// long call with the GIL released while Ctrl-C stays live.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <stop_token>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "hpcplan/cli/run_control.hpp"
+
+namespace hpcplan::python {
+
+namespace py = pybind11;
+
+// hpcplan.StopSource: a request to end a call early, from any Python thread (std::stop_source's
+// model). A search or plan then answers with status cancelled; a fluid step or a simulation
+// ends at its next frame's end.
+class StopSource {
+ public:
+  bool request_stop() { return source_.request_stop(); }
+  bool stop_requested() const { return source_.stop_requested(); }
+  std::stop_token token() const { return source_.get_token(); }
+
+ private:
+  std::stop_source source_;
+};
+
+// Parses `tokens` ("--name=value", as the Python side builds them from keyword arguments) with
+// `command`'s options: a bad value is the CLI's own message, as an InputError (ValueError).
+void parse_options(CLI::App& command, const std::vector<std::string>& tokens);
+
+// The options `command` declares (cli/option_catalog.hpp), as a list of dicts.
+py::list describe(const CLI::App& command);
+
+// A JSON value as the Python object json.loads would make of its text.
+py::object to_python(const nlohmann::json& value);
+
+// A read-only NumPy view of `data` with this shape and these strides (bytes), kept alive by
+// `owner`.
+template <class T>
+py::array read_only_view(const T* data, std::vector<py::ssize_t> shape,
+                         std::vector<py::ssize_t> strides, py::handle owner) {
+  py::array a(py::dtype::of<T>(), std::move(shape), std::move(strides), data, owner);
+  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
+// What a call does on a Ctrl-C: end at its next safe boundary with its checkpoint
+// (interrupt: the dense lattice search with checkpoint=, a fluid step, a simulation), or
+// stop at once (cancel: everything else, whose answer is then status cancelled).
+enum class OnCtrlC { cancel, interrupt };
+
+// Runs `work(control)` with the GIL released and returns what it returns. From Python's main
+// thread the work runs on the module's worker thread (polled_worker.hpp) while this thread
+// wakes every 20 ms to run Python's signal handlers; when one raises (Ctrl-C's
+// KeyboardInterrupt), the work is stopped through `control` (as `on_ctrl_c` says), waited
+// for, and the handler's exception is raised. From any other thread, where Python runs no
+// signal handler, the work runs on the calling thread. `stop`, when given, also stops it.
+void run_released(const std::function<void(const cli::RunControl&)>& work, const StopSource* stop,
+                  OnCtrlC on_ctrl_c);
+
+template <class R>
+R call_released(const std::function<R(const cli::RunControl&)>& work, const StopSource* stop,
+                OnCtrlC on_ctrl_c = OnCtrlC::cancel) {
+  std::optional<R> result;
+  run_released([&](const cli::RunControl& control) { result.emplace(work(control)); }, stop,
+               on_ctrl_c);
+  return std::move(*result);
+}
+
+// The module's parts.
+void bind_grid(py::module_& m);
+void bind_worlds(py::module_& m);
+void bind_fluid(py::module_& m);
+void bind_sim(py::module_& m);
+
+}  // namespace hpcplan::python

@@ -1,0 +1,289 @@
+// hpcplan.sph: the fluid stepped from Python (hpcplan sph's problem options and session), its
+// particles seen as NumPy views of the engine's own arrays.
+#include <omp.h>
+
+#include <atomic>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bridge.hpp"
+#include "hpcplan/cli/fluid_options.hpp"
+#include "hpcplan/cli/fluid_session.hpp"
+#include "hpcplan/cli/vtk_dir.hpp"
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/io/sph_report.hpp"
+#include "hpcplan/io/vtk_fluid.hpp"
+#include "hpcplan/sph/checkpoint.hpp"
+#include "hpcplan/sph/presets.hpp"
+
+namespace hpcplan::python {
+
+namespace {
+
+// The OpenMP threads of the calling thread for one call, put back after it: the module's
+// worker thread serves every call, and one fluid's --threads must not become the next call's.
+class OmpThreads {
+ public:
+  explicit OmpThreads(int threads) : before_(omp_get_max_threads()), set_(threads > 0) {
+    if (set_) omp_set_num_threads(threads);
+  }
+  ~OmpThreads() {
+    if (set_) omp_set_num_threads(before_);
+  }
+  OmpThreads(const OmpThreads&) = delete;
+  OmpThreads& operator=(const OmpThreads&) = delete;
+
+ private:
+  int before_;
+  bool set_;
+};
+
+class Fluid {
+ public:
+  Fluid(std::unique_ptr<cli::FluidSession> session, int threads, std::string backend)
+      : session_(std::move(session)), threads_(threads), backend_(std::move(backend)) {
+    total_.frames = session_->frame();
+  }
+
+  // One user of the fluid at a time: a step releases the GIL, so another Python thread could
+  // otherwise read or step it mid-step.
+  class Use {
+   public:
+    explicit Use(const Fluid& f) : f_(f) {
+      if (f_.busy_.exchange(true))
+        throw RunError("this Fluid is in use by another thread (a step is under way)");
+    }
+    ~Use() { f_.busy_ = false; }
+    Use(const Use&) = delete;
+    Use& operator=(const Use&) = delete;
+
+   private:
+    const Fluid& f_;
+  };
+
+  cli::FluidSession& session() { return *session_; }
+  const cli::FluidSession& session() const { return *session_; }
+  int threads() const { return threads_; }
+  const std::string& backend() const { return backend_; }
+
+  py::dict step(std::uint64_t frames, const StopSource* stop) {
+    const Use use(*this);
+    if (frames == 0) throw InputError("frames must be at least 1");
+    const sph::RunReport r = call_released<sph::RunReport>(
+        [&](const cli::RunControl& control) {
+          const OmpThreads threads(threads_);
+          return session_->advance(frames, {}, [&] { return control.should_stop(); });
+        },
+        stop, OnCtrlC::interrupt);
+    // The whole life's report: frames and substeps so far, every frame's times.
+    total_.frames = r.frames;
+    total_.substeps += r.substeps;
+    total_.frame_ms.insert(total_.frame_ms.end(), r.frame_ms.begin(), r.frame_ms.end());
+    total_.grid_ms.insert(total_.grid_ms.end(), r.grid_ms.begin(), r.grid_ms.end());
+    if (!r.stable && total_.stable) {
+      total_.stable = false;
+      total_.unstable_frame = r.unstable_frame;
+      total_.problem = r.problem;
+    }
+    py::dict d;
+    d["frame"] = r.frames;
+    d["substeps"] = r.substeps;
+    d["frame_ms"] = r.frame_ms;
+    d["stable"] = r.stable;
+    d["problem"] = r.problem;
+    d["interrupted"] = r.interrupted;
+    return d;
+  }
+
+  // hpcplan sph --json's object for the frames run so far.
+  py::object report() const {
+    const Use use(*this);
+    io::SphRun info = session_->describe(threads_ > 0 ? threads_ : omp_get_max_threads());
+    info.report = total_;
+    info.summary = sph::summarise(session_->fluid().full_state());
+    double seconds = 0.0;
+    for (double ms : total_.frame_ms) seconds += ms / 1000.0;
+    info.seconds = seconds;
+    return to_python(io::to_json(info));
+  }
+
+  void write_vtk(const std::string& dir) {
+    const Use use(*this);
+    auto it = vtk_.find(dir);
+    if (it == vtk_.end()) {
+      cli::prepare_vtk_dir(dir);
+      auto series = std::make_unique<io::VtkSeries>(dir);
+      if (session_->restarted())  // the frames the interrupted run wrote there
+        series->resume(session_->restarted_at_frame(), session_->fluid().state().params.frame_dt);
+      it = vtk_.emplace(dir, std::move(series)).first;
+    }
+    it->second->write(session_->frame(), session_->fluid().full_state());
+  }
+
+  void checkpoint(const std::string& path) {
+    const Use use(*this);
+    if (!session_->write_checkpoint(path))
+      throw RunError("the fluid's state is unsound (" +
+                     sph::first_problem(session_->fluid().full_state()) +
+                     "): no checkpoint written to '" + path + "'");
+  }
+
+  // The state with positions current (state()) or every array current (full_state()).
+  const sph::FluidState& state(bool every_array) const {
+    const Use use(*this);
+    return every_array ? session_->fluid().full_state() : session_->fluid().state();
+  }
+
+ private:
+  std::unique_ptr<cli::FluidSession> session_;
+  int threads_;
+  std::string backend_;
+  sph::RunReport total_;
+  std::map<std::string, std::unique_ptr<io::VtkSeries>> vtk_;
+  mutable std::atomic<bool> busy_{false};
+};
+
+std::unique_ptr<Fluid> make(const std::vector<std::string>& tokens, const StopSource* stop) {
+  cli::FluidArgs a;
+  CLI::App command("hpcplan sph");
+  cli::add_fluid_options(&command, a);
+  parse_options(command, tokens);
+  const sph::FluidOptions o = cli::fluid_problem(a);
+  sph::validate(o);
+  sph::check_backend_name(a.backend);
+  cli::require_memory(sph::estimated_bytes(o), o.particles, a.memory_mb);
+  auto session = call_released<std::unique_ptr<cli::FluidSession>>(
+      [&](const cli::RunControl&) {
+        const OmpThreads threads(a.threads);
+        return std::make_unique<cli::FluidSession>(o, a.backend);
+      },
+      stop);
+  return std::make_unique<Fluid>(std::move(session), a.threads, a.backend);
+}
+
+std::unique_ptr<Fluid> restart(const std::string& path, const std::vector<std::string>& tokens) {
+  cli::FluidArgs a;
+  CLI::App command("hpcplan sph");
+  cli::add_fluid_options(&command, a);
+  parse_options(command, tokens);
+  sph::check_backend_name(a.backend);
+  auto session = call_released<std::unique_ptr<cli::FluidSession>>(
+      [&](const cli::RunControl&) {
+        const OmpThreads threads(a.threads);
+        sph::FluidCheckpoint checkpoint = sph::read_checkpoint(path);
+        cli::require_memory(sph::estimated_bytes(checkpoint.options), checkpoint.options.particles,
+                            a.memory_mb);
+        return std::make_unique<cli::FluidSession>(std::move(checkpoint), a.backend);
+      },
+      nullptr);
+  return std::make_unique<Fluid>(std::move(session), a.threads, a.backend);
+}
+
+// A field of the particles as a read-only view of the engine's own array: (n,) for one
+// column, (n, 3) for a vector quantity whose three columns follow one another in the block
+// (sph/particles.hpp).
+template <class T>
+py::array column_view(py::object self, const sph::Column<T>& first, std::size_t capacity,
+                      int components) {
+  const py::ssize_t n = static_cast<py::ssize_t>(first.size());
+  const auto item = static_cast<py::ssize_t>(sizeof(T));
+  if (components == 1) return read_only_view(first.data(), {n}, {item}, self);
+  return read_only_view(first.data(), {n, components},
+                        {item, static_cast<py::ssize_t>(capacity) * item}, self);
+}
+
+template <class Pick>
+auto view_property(bool every_array, int components, Pick pick) {
+  return [every_array, components, pick](py::object self) {
+    const sph::FluidState& s = self.cast<const Fluid&>().state(every_array);
+    return column_view(self, pick(s.particles), s.particles.capacity(), components);
+  };
+}
+
+}  // namespace
+
+void bind_fluid(py::module_& m) {
+  m.def("fluid_options", [] {
+    cli::FluidArgs a;
+    CLI::App command("hpcplan sph");
+    cli::add_fluid_options(&command, a);
+    return describe(command);
+  });
+  py::class_<Fluid>(m, "Fluid")
+      .def(py::init(&make), py::arg("tokens"), py::arg("stop") = nullptr)
+      .def_static("restart", &restart, py::arg("path"), py::arg("tokens"))
+      .def("step", &Fluid::step, py::arg("frames") = 1, py::arg("stop") = nullptr)
+      .def("report", &Fluid::report)
+      .def("write_vtk", &Fluid::write_vtk, py::arg("dir"))
+      .def("checkpoint", &Fluid::checkpoint, py::arg("path"))
+      .def_property_readonly("frame", [](const Fluid& f) { return f.session().frame(); })
+      .def_property_readonly("time", [](const Fluid& f) { return f.state(false).time; })
+      .def_property_readonly("substeps", [](const Fluid& f) { return f.state(false).substeps; })
+      .def_property_readonly("size", [](const Fluid& f) { return f.state(false).particles.size(); })
+      .def_property_readonly("fluid_count",
+                             [](const Fluid& f) { return f.state(false).fluid_count; })
+      .def_property_readonly("backend",
+                             [](const Fluid& f) { return f.session().fluid().backend().name(); })
+      .def_property_readonly("threads", &Fluid::threads)
+      .def_property_readonly("options",
+                             [](const Fluid& f) {
+                               const sph::FluidOptions& o = f.session().options();
+                               py::dict d;
+                               d["preset"] = std::string(sph::to_string(o.preset));
+                               d["scenario"] = std::string(sph::to_string(o.scenario));
+                               d["particles"] = o.particles;
+                               d["seed"] = o.seed;
+                               return d;
+                             })
+      .def_property_readonly("restarted_at_frame",
+                             [](const Fluid& f) -> py::object {
+                               if (!f.session().restarted()) return py::none();
+                               return py::int_(f.session().restarted_at_frame());
+                             })
+      .def_property_readonly("positions",
+                             view_property(
+                                 false, 3, [](const sph::Particles& p) -> auto& { return p.x; }))
+      .def_property_readonly("velocities",
+                             view_property(
+                                 true, 3, [](const sph::Particles& p) -> auto& { return p.vx; }))
+      .def_property_readonly("density",
+                             view_property(
+                                 true, 1, [](const sph::Particles& p) -> auto& { return p.rho; }))
+      .def_property_readonly("pressure",
+                             view_property(
+                                 true, 1, [](const sph::Particles& p) -> auto& { return p.p; }))
+      .def_property_readonly("ids",
+                             view_property(
+                                 false, 1, [](const sph::Particles& p) -> auto& { return p.id; }))
+      .def_property_readonly("wall",
+                             view_property(
+                                 false, 1, [](const sph::Particles& p) -> auto& { return p.wall; }))
+      .def_property_readonly(
+          "boxes",
+          [](const Fluid& f) {
+            const auto& boxes = f.state(false).boxes;
+            py::array_t<double> a({static_cast<py::ssize_t>(boxes.size()), py::ssize_t{9}});
+            double* out = a.mutable_data();
+            for (const sph::MovingBox& b : boxes) {
+              out = std::copy(b.box.lo.begin(), b.box.lo.end(), out);
+              out = std::copy(b.box.hi.begin(), b.box.hi.end(), out);
+              out = std::copy(b.velocity.begin(), b.velocity.end(), out);
+            }
+            return a;
+          })
+      .def_property_readonly("probes", [](const Fluid& f) {
+        const sph::Probes& p = f.session().probes();
+        py::dict d;
+        d["columns"] = p.columns;
+        const py::ssize_t width = static_cast<py::ssize_t>(p.columns.size());
+        py::array_t<double> rows({static_cast<py::ssize_t>(p.rows.size()), width});
+        double* out = rows.mutable_data();
+        for (const std::vector<double>& row : p.rows) out = std::copy(row.begin(), row.end(), out);
+        d["rows"] = std::move(rows);
+        return d;
+      });
+}
+
+}  // namespace hpcplan::python

@@ -1,0 +1,65 @@
+// hpcplan._hpcplan: the engine's bindings, one part per area (grid, worlds, fluid, simulator),
+// under the pure-Python package `hpcplan` that gives them their signatures and result types.
+#include <set>
+#include <string>
+
+#include "bridge.hpp"
+#include "hpcplan/core/error.hpp"
+#include "hpcplan/io/planners_json.hpp"
+#include "hpcplan/plan/planner_registry.hpp"
+
+namespace {
+
+// The CLI's messages are one line (cli/src/main.cpp); so are these exceptions'.
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_hpcplan, m) {
+  namespace py = pybind11;
+  using hpcplan::python::StopSource;
+  m.doc() = "hpcplan's engine (use the package hpcplan: hpcplan.grid, hpcplan.map3d, ...)";
+  // Bad input is a ValueError, a run that failed a RuntimeError, each with the CLI's message.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const hpcplan::InputError& e) {
+      PyErr_SetString(PyExc_ValueError, one_line(e.what()).c_str());
+    } catch (const hpcplan::RunError& e) {
+      PyErr_SetString(PyExc_RuntimeError, one_line(e.what()).c_str());
+    }
+  });
+  py::class_<StopSource>(m, "StopSource",
+                         "A request to end a call early, from any thread: a search or plan "
+                         "answers with status 'cancelled', a fluid step or a simulation ends at "
+                         "its next frame's end.")
+      .def(py::init<>())
+      .def("request_stop", &StopSource::request_stop,
+           "Asks every call given this source to stop; True the first time.")
+      .def_property_readonly("stop_requested", &StopSource::stop_requested);
+  m.def(
+      "planners",
+      [](const std::string& world) {
+        const auto& registry = hpcplan::plan::PlannerRegistry::get();
+        if (!world.empty()) {
+          std::set<std::string> worlds;
+          for (const auto& p : registry.planners()) worlds.insert(p.worlds.begin(), p.worlds.end());
+          if (!worlds.count(world)) {
+            std::string known;
+            for (const std::string& w : worlds) known += (known.empty() ? "" : ", ") + w;
+            throw hpcplan::InputError("world '" + world + "' is not one of " + known);
+          }
+        }
+        return hpcplan::python::to_python(hpcplan::to_json(registry, world));
+      },
+      py::arg("world") = "");
+  hpcplan::python::bind_grid(m);
+  hpcplan::python::bind_worlds(m);
+  hpcplan::python::bind_fluid(m);
+  hpcplan::python::bind_sim(m);
+}
