@@ -1,11 +1,14 @@
 #!/usr/bin/env python3
 """Draws a world file (box map or sphere world) with one or more paths to a PNG.
 
-  draw_paths.py MAP OUT.png [PATH.csv[:label] ...] [--title T]
+  draw_paths.py MAP OUT.png [PATH.csv[:label] ...] [--plan ALGO[:label] ...] [--title T]
 
 Box maps get four matplotlib 3D views (perspective, top, front, side); sphere worlds one 2D
-plot. Path files are what `hpcplan map3d|sphere2d --path-out` and hpcplan_world_sweep --paths
-write (x,y[,z] per line, optional header). Run with /usr/bin/python3 (Debian's matplotlib).
+plot. The world is read by the engine's own parser, through the Python package (hpcplan.map3d,
+hpcplan.sphere2d), so the drawing shows what the planners see. Path files are what
+`hpcplan map3d|sphere2d --path-out` and hpcplan_world_sweep --paths write (x,y[,z] per line,
+optional header); --plan ALGO plans the map's own query in this process with that planner
+(repeatable). Run with /usr/bin/python3 (Debian's matplotlib).
 """
 import argparse
 import os
@@ -18,20 +21,31 @@ import matplotlib.pyplot as plt  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 
-def read_world(path):
-    world = {"blocks": [], "spheres": [], "boundary": None, "start": None, "goal": None}
-    for raw in open(path):
-        w = raw.split("#")[0].split()
-        if not w:
-            continue
-        vals = [float(x) for x in w[1:]]
-        if w[0] == "block":
-            world["blocks"].append(vals)
-        elif w[0] == "sphere":
-            world["spheres"].append(vals)
-        elif w[0] in ("boundary", "start", "goal"):
-            world[w[0]] = vals
-    return world
+def load_hpcplan():
+    # The build tree's package when no other is on the path.
+    sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build",
+                                 "python"))
+    import hpcplan
+    return hpcplan
+
+
+def read_world(hpcplan, path):
+    """The world as the engine parses it: a box map, else a sphere world (ValueError with the
+    box map's message when it is neither)."""
+    try:
+        box = hpcplan.map3d.load(path)
+        blocks = [list(b) + list(c) for b, c in zip(box.obstacles, box.colours)]
+        lo, hi = box.bounds
+        return box, {"blocks": blocks, "spheres": [], "boundary": list(lo) + list(hi),
+                     "start": box.start, "goal": box.goal}
+    except ValueError as as_box:
+        try:
+            world = hpcplan.sphere2d.load(path)
+        except ValueError:
+            raise as_box from None
+        return world, {"blocks": [], "spheres": world.obstacles.tolist(),
+                       "boundary": world.boundary.tolist(), "start": world.start,
+                       "goal": world.goal}
 
 
 def read_path(path):
@@ -77,8 +91,10 @@ def draw_3d(world, paths, out, title):
             xs, ys, zs = zip(*pts)
             ax.plot(xs, ys, zs, linewidth=2, label=label)
         for key, marker, col in (("start", "o", "green"), ("goal", "*", "red")):
-            p = world[key] or (paths[0][0][0 if key == "start" else -1] if paths else None)
-            if p:
+            p = world[key]
+            if p is None and paths:
+                p = paths[0][0][0 if key == "start" else -1]
+            if p is not None:
                 ax.scatter(*p[:3], marker=marker, s=80, color=col, depthshade=False)
         if bnd:
             ax.set_xlim(bnd[0], bnd[3])
@@ -107,7 +123,7 @@ def draw_2d(world, paths, out, title):
         xs, ys = zip(*[p[:2] for p in pts])
         ax.plot(xs, ys, linewidth=1.8, label=label)
     for key, marker, col in (("start", "o", "green"), ("goal", "*", "red")):
-        if world[key]:
+        if world[key] is not None:
             ax.plot(*world[key], marker=marker, color=col, markersize=10)
     ax.set_xlim(cx - r * 1.05, cx + r * 1.05)
     ax.set_ylim(cy - r * 1.05, cy + r * 1.05)
@@ -124,23 +140,35 @@ def main():
     ap.add_argument("map")
     ap.add_argument("out")
     ap.add_argument("paths", nargs="*")
+    ap.add_argument("--plan", action="append", default=[],
+                    help="ALGO[:label]: plan the map's own query with this planner and draw it")
     ap.add_argument("--title", default=None)
     a = ap.parse_args()
     try:
-        world = read_world(a.map)
+        hpcplan = load_hpcplan()
+    except ImportError as e:
+        print(f"draw_paths: error: the Python package hpcplan is needed ({e}); build it "
+              "(scripts/build.sh) or set PYTHONPATH", file=sys.stderr)
+        return 1
+    try:
+        loaded, world = read_world(hpcplan, a.map)
         paths = []
         for spec in a.paths:
             file, _, label = spec.partition(":")
             paths.append((read_path(file), label or os.path.basename(file)))
-    except (OSError, ValueError) as e:
+        for spec in a.plan:
+            algo, _, label = spec.partition(":")
+            r = loaded.plan(algo=algo)
+            if r.status != "solved":
+                print(f"draw_paths: {algo} found no path ({r.status})", file=sys.stderr)
+                continue
+            paths.append((r.path.tolist(), label or f"{algo} ({r.length:.2f})"))
+    except (OSError, ValueError, TypeError) as e:
         print(f"draw_paths: error: {e}", file=sys.stderr)
-        return 2
-    if world["boundary"] is None:
-        print(f"draw_paths: error: {a.map} has no boundary line", file=sys.stderr)
         return 2
     title = a.title or os.path.basename(a.map)
     tmp = a.out + ".tmp.png"
-    (draw_2d if world["spheres"] or len(world["boundary"]) == 3 else draw_3d)(world, paths, tmp, title)
+    (draw_2d if len(world["boundary"]) == 3 else draw_3d)(world, paths, tmp, title)
     os.replace(tmp, a.out)
     return 0
 

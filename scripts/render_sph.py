@@ -5,7 +5,11 @@ wireframes; for a simulator run also the robot, the goal, the plan it follows an
 and an animation, MP4 through ffmpeg when it is installed, else an animated GIF.
 
 Usage: render_sph.py DIR [--out OUT_PREFIX] [--fps 10] [--max-points 200000] [--gif]
-Reads DIR/fluid.pvd and the .vtu files it names with VTK's own reader (python3-vtk9).
+       render_sph.py --fluid KEY=VALUE,... [--frames 100] [--every 5] --out OUT_PREFIX ...
+Reads DIR/fluid.pvd and the .vtu files it names with VTK's own reader (python3-vtk9). With
+--fluid it runs the fluid itself through the Python package (hpcplan.sph.Fluid, the options of
+hpcplan sph's problem: preset=water,scenario=dambreak,particles=4000,...) and draws each K-th
+frame straight from the engine's particle arrays (zero-copy NumPy views), with no file between.
 """
 import argparse
 import os
@@ -60,14 +64,9 @@ def draw_robot(ax, g):
     ax.legend(loc="upper left", fontsize=7)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("dir")
-    ap.add_argument("--out", default=None, help="output prefix (default DIR/render)")
-    ap.add_argument("--fps", type=int, default=10)
-    ap.add_argument("--max-points", type=int, default=200000)
-    ap.add_argument("--gif", action="store_true", help="write a GIF even when ffmpeg exists")
-    a = ap.parse_args()
+def vtk_frames(a):
+    """(time, positions, velocities, box edges, robot grid or None) of each written frame of an
+    hpcplan sph/sim --vtk directory, and the bounds holding every frame."""
     pvd = os.path.join(a.dir, "fluid.pvd")
     if not os.path.exists(pvd):
         sys.exit(f"render_sph: error: {pvd} not found (run hpcplan sph --vtk {a.dir})")
@@ -75,18 +74,89 @@ def main():
     frames = [(float(s.get("timestep")), s.get("file")) for s in sets if s.get("part") == "0"]
     boxes = {float(s.get("timestep")): s.get("file") for s in sets if s.get("part") == "1"}
     robots = {float(s.get("timestep")): s.get("file") for s in sets if s.get("part") == "2"}
-    prefix = a.out or os.path.join(a.dir, "render")
     first = read(os.path.join(a.dir, frames[0][1]))
     lo, hi = np.array(first.GetBounds()[0::2]), np.array(first.GetBounds()[1::2])
     for _, name in frames:  # the axes hold every frame
         b = read(os.path.join(a.dir, name)).GetBounds()
         lo, hi = np.minimum(lo, b[0::2]), np.maximum(hi, b[1::2])
+
+    def each():
+        for t, name in frames:
+            g = read(os.path.join(a.dir, name))
+            x = vtk_to_numpy(g.GetPoints().GetData())
+            v = vtk_to_numpy(g.GetPointData().GetArray("velocity"))
+            edges = list(box_edges(read(os.path.join(a.dir, boxes[t])))) if t in boxes else []
+            robot = read(os.path.join(a.dir, robots[t])) if t in robots else None
+            yield t, x, v, edges, robot
+    return each(), lo, hi
+
+
+def live_frames(a):
+    """The same, from a fluid run in this process: every --every-th frame's fluid particles,
+    read from the engine's own arrays."""
+    # The build tree's package when no other is on the path.
+    sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build",
+                                 "python"))
+    try:
+        import hpcplan
+    except ImportError as e:
+        sys.exit(f"render_sph: error: --fluid needs the Python package hpcplan ({e}); build it "
+                 "(scripts/build.sh) or set PYTHONPATH")
+    options = {}
+    for item in a.fluid.split(","):
+        key, _, value = (x.strip() for x in item.partition("="))
+        for cast in (int, float, str):
+            try:
+                options[key] = cast(value)
+                break
+            except ValueError:
+                pass
+    try:
+        fluid = hpcplan.sph.Fluid(**options)
+    except (TypeError, ValueError) as e:
+        sys.exit(f"render_sph: error: --fluid: {e}")
+    x = fluid.positions  # walls included: the tank frames the axes
+    lo, hi = x.min(axis=0), x.max(axis=0)
+
+    def each():
+        for frame in range(0, a.frames + 1, a.every):
+            if frame > 0:
+                report = fluid.step(frames=a.every)
+                if not report["stable"]:
+                    sys.exit(f"render_sph: error: the fluid became unsound: {report['problem']}")
+            keep = fluid.wall == 0  # a copy of the fluid's rows; the views are valid until here
+            edges = []
+            for b in fluid.boxes:
+                corners = [np.array([b[0 + 3 * i], b[1 + 3 * j], b[2 + 3 * k]])
+                           for i in (0, 1) for j in (0, 1) for k in (0, 1)]
+                edges += [(corners[p], corners[q]) for p, q in
+                          [(0, 1), (2, 3), (4, 5), (6, 7), (0, 2), (1, 3), (4, 6), (5, 7),
+                           (0, 4), (1, 5), (2, 6), (3, 7)]]
+            yield fluid.time, fluid.positions[keep], fluid.velocities[keep], edges, None
+    return each(), lo, hi
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("dir", nargs="?")
+    ap.add_argument("--out", default=None, help="output prefix (default DIR/render)")
+    ap.add_argument("--fps", type=int, default=10)
+    ap.add_argument("--max-points", type=int, default=200000)
+    ap.add_argument("--gif", action="store_true", help="write a GIF even when ffmpeg exists")
+    ap.add_argument("--fluid", help="run this fluid here (hpcplan.sph.Fluid's options, "
+                                    "key=value,...) instead of reading DIR")
+    ap.add_argument("--frames", type=int, default=100, help="with --fluid: frames to run")
+    ap.add_argument("--every", type=int, default=5, help="with --fluid: draw every K-th frame")
+    a = ap.parse_args()
+    if (a.dir is None) == (a.fluid is None):
+        sys.exit("render_sph: error: give a VTK directory or --fluid, not both or neither")
+    if a.fluid is not None and (a.out is None or a.frames < 1 or a.every < 1):
+        sys.exit("render_sph: error: --fluid needs --out, and positive --frames and --every")
+    frames, lo, hi = live_frames(a) if a.fluid else vtk_frames(a)
+    prefix = a.out or os.path.join(a.dir, "render")
     pngs = []
     rng = np.random.default_rng(0)
-    for k, (t, name) in enumerate(frames):
-        g = read(os.path.join(a.dir, name))
-        x = vtk_to_numpy(g.GetPoints().GetData())
-        v = vtk_to_numpy(g.GetPointData().GetArray("velocity"))
+    for k, (t, x, v, edges, robot) in enumerate(frames):
         if len(x) > a.max_points:
             keep = rng.choice(len(x), a.max_points, replace=False)
             x, v = x[keep], v[keep]
@@ -96,12 +166,11 @@ def main():
         # With a robot on stage the fluid steps back (faint) so the robot, goal and plan show.
         sc = ax.scatter(x[:, 0], x[:, 1], x[:, 2], c=speed, s=1.5, cmap="viridis", vmin=0,
                         vmax=max(1e-9, np.percentile(speed, 99)), depthshade=False,
-                        alpha=0.25 if t in robots else 1.0)
-        if t in boxes:
-            for p, q in box_edges(read(os.path.join(a.dir, boxes[t]))):
-                ax.plot(*zip(p, q), color="tab:red", lw=1)
-        if t in robots:
-            draw_robot(ax, read(os.path.join(a.dir, robots[t])))
+                        alpha=0.25 if robot is not None else 1.0)
+        for p, q in edges:
+            ax.plot(*zip(p, q), color="tab:red", lw=1)
+        if robot is not None:
+            draw_robot(ax, robot)
         ax.set_xlim(lo[0], hi[0]); ax.set_ylim(lo[1], hi[1]); ax.set_zlim(lo[2], hi[2])
         ax.set_box_aspect(hi - lo)
         ax.set_title(f"t = {t:.2f} s, {len(x)} particles")

@@ -3,9 +3,13 @@
 sweep folders, or single CSVs), as Markdown and PNG.
 
 Usage: sim_report.py RESULT [RESULT ...] [--out DIR]
+       sim_report.py --simulate 'KEY=V1,V2;KEY=V;...' --out DIR
 RESULT: a folder (its */*.csv and *.csv per-run files, with the matching *.replans.csv logs) or
 a per-run CSV. Writes DIR/sim_report.md and DIR/fig{1,2,3,4}_*.png (DIR default: the first
-folder) and prints the Markdown.
+folder) and prints the Markdown. --simulate runs the sweep itself, in this process, through the
+Python package (hpcplan.sim.run: one run per combination of the values given, e.g.
+'scenario=particles,dynamic;algo=astar,dstar_lite;particles=500,1500;runs=3'), and builds the
+same tables from the rows it returns, with no CLI run and no CSV between.
 
 Tables (the paper's numbering):
   II   time to goal by scenario (successful runs; mean +- sd), and the success rate
@@ -88,6 +92,58 @@ def load(paths):
     return runs, replans
 
 
+def simulate(spec):
+    """Every combination of the spec's values run through hpcplan.sim.run; the per-run and
+    per-replan rows, each value as its CSV cell would read (the tables below take text)."""
+    import itertools
+    # The build tree's package when no other is on the path.
+    sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build",
+                                 "python"))
+    try:
+        import hpcplan
+    except ImportError as e:
+        sys.exit(f"sim_report: error: --simulate needs the Python package hpcplan ({e}); build "
+                 "it (scripts/build.sh) or set PYTHONPATH")
+
+    def value(text):
+        for cast in (int, float):
+            try:
+                return cast(text)
+            except ValueError:
+                pass
+        return text
+
+    keys, choices = [], []
+    for item in filter(None, (x.strip() for x in spec.split(";"))):
+        key, sep, values = item.partition("=")
+        if not sep or not values:
+            sys.exit(f"sim_report: error: --simulate: '{item}' is not KEY=V1,V2,...")
+        keys.append(key.strip())
+        choices.append([value(v.strip()) for v in values.split(",")])
+
+    def text(v):
+        return "" if v is None else str(v)
+
+    runs, replans = [], []
+    for combination in itertools.product(*choices):
+        options = dict(zip(keys, combination))
+        try:
+            result = hpcplan.sim.run(**options)
+        except (TypeError, ValueError) as e:
+            sys.exit(f"sim_report: error: --simulate {options}: {e}")
+        rows = [{k: text(v) for k, v in r.items()} for r in result.runs]
+        print(f"sim_report: {options}: {len(rows)} runs", file=sys.stderr)
+        for r in result.replans:
+            r = {k: text(v) for k, v in r.items()}
+            for k in ("scenario", "particle_count", "pace", "controller", "occupancy"):
+                r[k] = rows[0].get(k, "") if rows else ""
+            replans.append(r)
+        runs += rows
+    if not runs:
+        sys.exit("sim_report: error: --simulate made no run")
+    return runs, replans
+
+
 def f(x):
     return float(x) if x not in ("", None) else math.nan
 
@@ -114,10 +170,16 @@ def fmt(x, d=2):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("results", nargs="+")
+    ap.add_argument("results", nargs="*")
     ap.add_argument("--out", default=None)
+    ap.add_argument("--simulate", default=None,
+                    help="run this sweep in-process (hpcplan.sim.run) instead of reading RESULT")
     a = ap.parse_args()
-    runs, replans = load(a.results)
+    if bool(a.results) == bool(a.simulate):
+        sys.exit("sim_report: error: give RESULT folders or CSVs, or --simulate, not both")
+    if a.simulate and not a.out:
+        sys.exit("sim_report: error: --simulate needs --out DIR")
+    runs, replans = simulate(a.simulate) if a.simulate else load(a.results)
     all_runs, all_replans = runs, replans
     runs = [r for r in runs if r["occupancy"] == "particles"]
     replans = [r for r in replans if r["occupancy"] == "particles"]
