@@ -80,7 +80,7 @@ bash scripts/build.sh build-tsan -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=c
   -DCMAKE_BUILD_TYPE=RelWithDebInfo "$sanitizer_flags" -DHPCPLAN_SANITIZE=thread -DHPCPLAN_BUILD_BENCH=OFF -DHPCPLAN_BUILD_CLI=OFF \
   -DHPCPLAN_BUILD_PYTHON=OFF \
   --target hpcplan_thread_tests --target hpcplan_sim_tests --target hpcplan_dense_thread_tests \
-  --target hpcplan_sph_tests --target hpcplan_python_worker_tests
+  --target hpcplan_sph_tests --target hpcplan_python_relay_tests
 echo "== tests (ThreadSanitizer)"
 # ignore_noninstrumented_modules: accesses inside the uninstrumented runtime itself are Archer's
 # to describe, not TSan's to report.

@@ -152,10 +152,32 @@ def make(function, options, leading=(), trailing=(STOP,), summary="", extra_doc=
     return signature
 
 
+class Binder:
+    """Checks a call's keyword arguments against a signature of keyword-only parameters as
+    Python does (TypeError naming the function, for an unknown or a missing one), without
+    inspect's general binding (a tenth of a small query's time)."""
+
+    def __init__(self, signature):
+        self.names = frozenset(signature.parameters)
+        self.required = tuple(n for n, p in signature.parameters.items()
+                              if p.default is inspect.Parameter.empty)
+
+    def __call__(self, name, kwargs):
+        for key in kwargs:
+            if key not in self.names:
+                raise TypeError(f"{name}() got an unexpected keyword argument '{key}'")
+        for key in self.required:
+            if key not in kwargs:
+                raise TypeError(f"{name}() missing a required argument: '{key}'")
+        return dict(kwargs)
+
+
 def bind(signature, name, kwargs):
-    """The call's keyword arguments bound to ``signature``, with Python's TypeError for an
-    unknown or missing one, naming the function as Python does."""
-    try:
-        return signature.bind(**kwargs).arguments
-    except TypeError as e:
-        raise TypeError(f"{name}() {e}") from None
+    """The call's keyword arguments checked against ``signature`` (see Binder)."""
+    binder = _BINDERS.get(id(signature))
+    if binder is None or binder[0] is not signature:
+        binder = _BINDERS[id(signature)] = (signature, Binder(signature))
+    return binder[1](name, kwargs)
+
+
+_BINDERS = {}

@@ -4,13 +4,12 @@
 #include <pythread.h>
 
 #include <algorithm>
-#include <chrono>
 #include <exception>
 #include <utility>
 
 #include "hpcplan/cli/option_catalog.hpp"
 #include "hpcplan/core/error.hpp"
-#include "hpcplan/python/polled_worker.hpp"
+#include "hpcplan/python/interrupt_relay.hpp"
 
 namespace hpcplan::python {
 
@@ -75,14 +74,6 @@ py::object to_python(const nlohmann::json& v) {
 
 namespace {
 
-// One worker for the main thread's calls: the main thread makes one call at a time anyway, and
-// the worker's OpenMP team then lives from call to call. Never destroyed (the interpreter may
-// still call into the module while static objects are torn down).
-PolledWorker& main_thread_worker() {
-  static PolledWorker* worker = new PolledWorker;
-  return *worker;
-}
-
 bool on_main_thread() {
   static const unsigned long main_ident =
       py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
@@ -107,31 +98,28 @@ void run_released(const std::function<void(const cli::RunControl&)>& work, const
   if (stop != nullptr)
     link.emplace(stop->token(), std::function<void()>([state] { state->cancel.request_stop(); }));
 
-  if (!on_main_thread()) {
+  if (!on_main_thread()) {  // where Python runs no signal handler, nothing to relay
     py::gil_scoped_release release;
     work(control);
     return;
   }
-  std::optional<py::error_already_set> raised;
-  const std::function<void()> job = [&] { work(control); };
-  const std::function<void()> poll = [&] {
-    if (raised) return;
-    py::gil_scoped_acquire gil;
-    if (PyErr_CheckSignals() == 0) return;
-    raised.emplace();  // takes the handler's exception (KeyboardInterrupt) out of Python
-    state->interruption = "KeyboardInterrupt";
-    if (on_ctrl_c == OnCtrlC::cancel) state->cancel.request_stop();
-  };
+  // On the main thread: SIGINT is relayed to the call's stop for as long as it runs
+  // (interrupt_relay.hpp); Python's own handler records it too, for the KeyboardInterrupt below.
   std::exception_ptr failure;
   {
     py::gil_scoped_release release;
     try {
-      main_thread_worker().run(job, poll, std::chrono::milliseconds(20));
+      InterruptRelay::run([&] { work(control); },
+                          [state, on_ctrl_c] {
+                            state->interruption = "KeyboardInterrupt";
+                            if (on_ctrl_c == OnCtrlC::cancel) state->cancel.request_stop();
+                          });
     } catch (...) {
       failure = std::current_exception();
     }
   }
-  if (raised) throw std::move(*raised);  // Ctrl-C wins over what the stopped work said
+  // Ctrl-C wins over what the stopped work said: the handler's exception (KeyboardInterrupt).
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
   if (failure) std::rethrow_exception(failure);
 }
 

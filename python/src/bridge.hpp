@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stop_token>
@@ -41,6 +42,32 @@ class StopSource {
 // `command`'s options: a bad value is the CLI's own message, as an InputError (ValueError).
 void parse_options(CLI::App& command, const std::vector<std::string>& tokens);
 
+// A subcommand's options parsed into a fresh copy of their arguments, with the CLI11 command
+// built once per thread and `key` (building hpcplan grid's costs about 40 us, three times a
+// small query's search): each parse starts again from the values registration left.
+// `register_options(app, args)` registers them.
+template <class Args, class Register>
+Args parse_cached(const std::string& key, const std::vector<std::string>& tokens,
+                  Register register_options) {
+  struct Entry {
+    Args args;
+    CLI::App app;
+    Args defaults;
+  };
+  thread_local std::map<std::string, std::unique_ptr<Entry>> cache;
+  std::unique_ptr<Entry>& e = cache[key];
+  if (!e) {
+    e = std::make_unique<Entry>();
+    e->app.name(key);
+    register_options(&e->app, e->args);
+    e->defaults = e->args;
+  }
+  e->args = e->defaults;
+  e->app.clear();
+  parse_options(e->app, tokens);
+  return e->args;
+}
+
 // The options `command` declares (cli/option_catalog.hpp), as a list of dicts.
 py::list describe(const CLI::App& command);
 
@@ -62,12 +89,10 @@ py::array read_only_view(const T* data, std::vector<py::ssize_t> shape,
 // stop at once (cancel: everything else, whose answer is then status cancelled).
 enum class OnCtrlC { cancel, interrupt };
 
-// Runs `work(control)` with the GIL released and returns what it returns. From Python's main
-// thread the work runs on the module's worker thread (polled_worker.hpp) while this thread
-// wakes every 20 ms to run Python's signal handlers; when one raises (Ctrl-C's
-// KeyboardInterrupt), the work is stopped through `control` (as `on_ctrl_c` says), waited
-// for, and the handler's exception is raised. From any other thread, where Python runs no
-// signal handler, the work runs on the calling thread. `stop`, when given, also stops it.
+// Runs `work(control)` on the calling thread with the GIL released. On Python's main thread a
+// Ctrl-C (SIGINT) meanwhile stops the work through `control`, as `on_ctrl_c` says
+// (interrupt_relay.hpp), and once the work is back Python runs its handler, whose
+// KeyboardInterrupt is raised. `stop`, when given, also stops it (from any thread).
 void run_released(const std::function<void(const cli::RunControl&)>& work, const StopSource* stop,
                   OnCtrlC on_ctrl_c);
 

@@ -22,8 +22,9 @@ namespace hpcplan::python {
 
 namespace {
 
-// The OpenMP threads of the calling thread for one call, put back after it: the module's
-// worker thread serves every call, and one fluid's --threads must not become the next call's.
+// The OpenMP threads of the calling thread for one call, put back after it: one thread (Python's
+// main thread, most often) makes many calls, and one fluid's --threads must not become the
+// next call's.
 class OmpThreads {
  public:
   explicit OmpThreads(int threads) : before_(omp_get_max_threads()), set_(threads > 0) {

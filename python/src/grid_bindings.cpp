@@ -96,10 +96,9 @@ py::array path_array(const std::vector<std::vector<int>>& path, int dims) {
 
 py::tuple solve(const std::vector<std::string>& tokens, const StopSource* stop,
                 const Field* on_field) {
-  auto a = std::make_shared<cli::GridArgs>();
-  CLI::App command("hpcplan grid");
-  cli::add_grid_options(&command, *a);
-  parse_options(command, tokens);
+  auto a = std::make_shared<cli::GridArgs>(parse_cached<cli::GridArgs>(
+      "hpcplan grid", tokens,
+      [](CLI::App* c, cli::GridArgs& args) { cli::add_grid_options(c, args); }));
   if (on_field != nullptr) {
     const GridProblem& f = on_field->problem;
     const GogParams &x = f.gog, &y = a->problem.gog;

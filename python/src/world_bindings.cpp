@@ -57,10 +57,10 @@ py::tuple plan(const World<Map>& w, const py::object& start, const py::object& g
                const std::vector<std::string>& tokens, const StopSource* stop,
                const std::string& world_name) {
   constexpr int D = kDimOf<Map>;
-  plan::WorldPlanOptions options;
-  CLI::App command("hpcplan " + world_name);
-  cli::add_world_planner_options(&command, options, world_name);
-  parse_options(command, tokens);
+  plan::WorldPlanOptions options = parse_cached<plan::WorldPlanOptions>(
+      "hpcplan " + world_name, tokens, [&](CLI::App* c, plan::WorldPlanOptions& o) {
+        cli::add_world_planner_options(c, o, world_name);
+      });
   auto query = [&](const py::object& given, const std::optional<env::Vec<D>>& from_map,
                    const char* what) {
     if (!given.is_none()) return point_of<D>(given, what);

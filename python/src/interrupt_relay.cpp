@@ -1,0 +1,113 @@
+#include "hpcplan/python/interrupt_relay.hpp"
+
+#include <errno.h>
+#include <pthread.h>
+#include <semaphore.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <mutex>
+#include <thread>
+
+namespace hpcplan::python {
+
+namespace {
+
+// The relay's state, process-wide (a signal handler has no other way to reach it). Never
+// destroyed: the relay thread may be blocked in sem_wait while static objects are torn down.
+struct Relay {
+  sem_t wake;
+  std::mutex m;
+  std::function<void()> current;  // the job's on_interrupt, while a job runs
+  pid_t owner = 0;                // the process whose relay thread exists
+  std::atomic<bool> busy{false};  // a run() is under way
+  struct sigaction replaced {};   // SIGINT's action before the relay (read by the handler)
+};
+
+Relay& relay() {
+  static Relay* r = new Relay;
+  return *r;
+}
+
+void relay_loop(Relay* r) {
+  for (;;) {
+    while (sem_wait(&r->wake) != 0 && errno == EINTR) {
+    }
+    std::function<void()> interrupt;
+    {
+      std::lock_guard lock(r->m);
+      interrupt = r->current;
+    }
+    if (interrupt) interrupt();
+  }
+}
+
+// A relay thread for this process: started at the first run(), and again in a forked child
+// (threads do not survive fork()), with every asynchronous signal blocked so that none is ever
+// delivered to it.
+void ensure_relay_thread(Relay& r) {
+  if (r.owner == getpid()) return;
+  sem_init(&r.wake, 0, 0);
+  sigset_t all, previous;
+  sigfillset(&all);
+  pthread_sigmask(SIG_BLOCK, &all, &previous);
+  std::thread(relay_loop, &r).detach();
+  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  r.owner = getpid();
+}
+
+extern "C" void relay_sigint(int signal, siginfo_t* info, void* context) {
+  const int saved = errno;
+  Relay& r = relay();
+  sem_post(&r.wake);
+  const struct sigaction& next = r.replaced;
+  if (next.sa_flags & SA_SIGINFO)
+    next.sa_sigaction(signal, info, context);
+  else if (next.sa_handler != SIG_DFL && next.sa_handler != SIG_IGN)
+    next.sa_handler(signal);
+  errno = saved;
+}
+
+}  // namespace
+
+void InterruptRelay::run(const std::function<void()>& job, std::function<void()> on_interrupt) {
+  Relay& r = relay();
+  if (r.busy.exchange(true)) {  // a run() inside a run(): the outer one relays
+    job();
+    return;
+  }
+  struct Done {
+    Relay& r;
+    bool installed = false;
+    ~Done() {
+      if (installed) sigaction(SIGINT, &r.replaced, nullptr);
+      {
+        std::lock_guard lock(r.m);
+        r.current = nullptr;
+      }
+      r.busy = false;
+    }
+  } done{r};
+  struct sigaction now {};
+  sigaction(SIGINT, nullptr, &now);
+  const bool handler =
+      (now.sa_flags & SA_SIGINFO) || (now.sa_handler != SIG_DFL && now.sa_handler != SIG_IGN);
+  if (handler) {
+    ensure_relay_thread(r);
+    {
+      std::lock_guard lock(r.m);
+      r.current = std::move(on_interrupt);
+    }
+    r.replaced = now;
+    struct sigaction ours {};
+    ours.sa_sigaction = relay_sigint;
+    ours.sa_flags = SA_SIGINFO | SA_RESTART;  // the job's system calls go on, not EINTR
+    sigemptyset(&ours.sa_mask);
+    sigaction(SIGINT, &ours, nullptr);
+    done.installed = true;
+  }
+  job();
+}
+
+}  // namespace hpcplan::python

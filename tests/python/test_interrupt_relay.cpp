@@ -1,0 +1,146 @@
+// The Python module's Ctrl-C relay (python/interrupt_relay.hpp): while a job runs, SIGINT wakes
+// the relay, which calls the job's on_interrupt, and the handler it replaced still runs; the job
+// stays on the calling thread; the handler in place is restored however the job ends; a default
+// or ignored SIGINT is left alone. Also run under ThreadSanitizer (threads_python).
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <stdexcept>
+#include <stop_token>
+#include <thread>
+
+#include "hpcplan/python/interrupt_relay.hpp"
+
+namespace {
+
+using hpcplan::python::InterruptRelay;
+using namespace std::chrono_literals;
+
+std::atomic<int> handled{0};  // the "previous" handler's calls (Python's, in the module)
+extern "C" void count_sigint(int) {
+  ++handled;
+}
+
+// SIGINT's handler for one test, put back after it.
+class SigintHandler {
+ public:
+  explicit SigintHandler(void (*handler)(int)) {
+    struct sigaction a {};
+    a.sa_handler = handler;
+    sigemptyset(&a.sa_mask);
+    sigaction(SIGINT, &a, &previous_);
+  }
+  ~SigintHandler() { sigaction(SIGINT, &previous_, nullptr); }
+
+ private:
+  struct sigaction previous_ {};
+};
+
+void (*current_handler())(int) {
+  struct sigaction now {};
+  sigaction(SIGINT, nullptr, &now);
+  return now.sa_handler;
+}
+
+// Waits until `stop` is requested, at most `limit`.
+bool wait_for(const std::stop_source& stop, std::chrono::milliseconds limit) {
+  const auto end = std::chrono::steady_clock::now() + limit;
+  while (!stop.stop_requested() && std::chrono::steady_clock::now() < end)
+    std::this_thread::sleep_for(1ms);
+  return stop.stop_requested();
+}
+
+TEST(InterruptRelay, ASigintStopsTheJobAndStillReachesTheHandlerItReplaced) {
+  const SigintHandler handler(count_sigint);
+  handled = 0;
+  std::stop_source stop;
+  std::atomic<int> relayed{0};
+  const std::thread::id caller = std::this_thread::get_id();
+  std::thread::id job_thread;
+  bool stopped = false;
+  InterruptRelay::run(
+      [&] {
+        job_thread = std::this_thread::get_id();
+        std::thread([] { kill(getpid(), SIGINT); }).join();  // as a terminal's Ctrl-C
+        stopped = wait_for(stop, 5000ms);
+      },
+      [&] {
+        ++relayed;
+        stop.request_stop();
+      });
+  EXPECT_TRUE(stopped);
+  EXPECT_EQ(relayed.load(), 1);
+  EXPECT_EQ(handled.load(), 1);
+  EXPECT_EQ(job_thread, caller);
+  EXPECT_EQ(current_handler(), &count_sigint);  // restored
+}
+
+TEST(InterruptRelay, TheHandlerIsRestoredWhenTheJobThrows) {
+  const SigintHandler handler(count_sigint);
+  EXPECT_THROW(InterruptRelay::run([] { throw std::runtime_error("failed"); }, [] {}),
+               std::runtime_error);
+  EXPECT_EQ(current_handler(), &count_sigint);
+}
+
+TEST(InterruptRelay, ADefaultOrIgnoredSigintIsLeftAlone) {
+  for (void (*action)(int) : {SIG_DFL, SIG_IGN}) {
+    const SigintHandler handler(action);
+    void (*during)(int) = nullptr;
+    InterruptRelay::run([&] { during = current_handler(); }, [] {});
+    EXPECT_EQ(during, action);
+    EXPECT_EQ(current_handler(), action);
+  }
+}
+
+TEST(InterruptRelay, ARunInsideARunRelaysOnce) {
+  const SigintHandler handler(count_sigint);
+  std::stop_source stop;
+  std::atomic<int> relayed{0};
+  InterruptRelay::run(
+      [&] {
+        InterruptRelay::run(
+            [&] {
+              kill(getpid(), SIGINT);
+              wait_for(stop, 5000ms);
+            },
+            [&] { ADD_FAILURE() << "the inner run relayed"; });
+      },
+      [&] {
+        ++relayed;
+        stop.request_stop();
+      });
+  EXPECT_EQ(relayed.load(), 1);
+  EXPECT_EQ(current_handler(), &count_sigint);
+}
+
+TEST(InterruptRelay, ASigintAfterTheJobReachesOnlyThePreviousHandler) {
+  const SigintHandler handler(count_sigint);
+  handled = 0;
+  std::atomic<int> relayed{0};
+  InterruptRelay::run([] {}, [&] { ++relayed; });
+  kill(getpid(), SIGINT);
+  const auto end = std::chrono::steady_clock::now() + 2000ms;
+  while (handled.load() == 0 && std::chrono::steady_clock::now() < end)
+    std::this_thread::sleep_for(1ms);
+  std::this_thread::sleep_for(20ms);  // time for a relay that should not happen
+  EXPECT_EQ(handled.load(), 1);
+  EXPECT_EQ(relayed.load(), 0);
+}
+
+TEST(InterruptRelay, ManyJobsInARowEachRelayTheirOwnSignal) {
+  const SigintHandler handler(count_sigint);
+  for (int k = 0; k < 20; ++k) {
+    std::stop_source stop;
+    InterruptRelay::run(
+        [&] {
+          kill(getpid(), SIGINT);
+          EXPECT_TRUE(wait_for(stop, 5000ms)) << k;
+        },
+        [&stop] { stop.request_stop(); });
+  }
+}
+
+}  // namespace
