@@ -20,13 +20,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
-
-def load_hpcplan():
-    # The build tree's package when no other is on the path.
-    sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build",
-                                 "python"))
-    import hpcplan
-    return hpcplan
+from hpcplan_package import import_hpcplan  # noqa: E402
 
 
 def read_world(hpcplan, path):
@@ -144,12 +138,7 @@ def main():
                     help="ALGO[:label]: plan the map's own query with this planner and draw it")
     ap.add_argument("--title", default=None)
     a = ap.parse_args()
-    try:
-        hpcplan = load_hpcplan()
-    except ImportError as e:
-        print(f"draw_paths: error: the Python package hpcplan is needed ({e}); build it "
-              "(scripts/build.sh) or set PYTHONPATH", file=sys.stderr)
-        return 1
+    hpcplan = import_hpcplan("draw_paths", "reading the world")
     try:
         loaded, world = read_world(hpcplan, a.map)
         paths = []

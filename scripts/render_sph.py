@@ -26,6 +26,8 @@ import numpy as np  # noqa: E402
 import vtk  # noqa: E402
 from vtk.util.numpy_support import vtk_to_numpy  # noqa: E402
 
+from hpcplan_package import import_hpcplan, value  # noqa: E402
+
 
 def read(path):
     r = vtk.vtkXMLUnstructuredGridReader()
@@ -94,23 +96,11 @@ def vtk_frames(a):
 def live_frames(a):
     """The same, from a fluid run in this process: every --every-th frame's fluid particles,
     read from the engine's own arrays."""
-    # The build tree's package when no other is on the path.
-    sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build",
-                                 "python"))
-    try:
-        import hpcplan
-    except ImportError as e:
-        sys.exit(f"render_sph: error: --fluid needs the Python package hpcplan ({e}); build it "
-                 "(scripts/build.sh) or set PYTHONPATH")
+    hpcplan = import_hpcplan("render_sph", "--fluid")
     options = {}
     for item in a.fluid.split(","):
-        key, _, value = (x.strip() for x in item.partition("="))
-        for cast in (int, float, str):
-            try:
-                options[key] = cast(value)
-                break
-            except ValueError:
-                pass
+        key, _, text = (x.strip() for x in item.partition("="))
+        options[key] = value(text)
     try:
         fluid = hpcplan.sph.Fluid(**options)
     except (TypeError, ValueError) as e:

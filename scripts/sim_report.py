@@ -45,6 +45,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from hpcplan_package import import_hpcplan, value  # noqa: E402
+
 SCENARIOS = ["particles", "static", "dynamic", "dambreak"]
 NAMES = {"particles": "Particles Only", "static": "Static Obstacles", "dynamic": "Dynamic Obstacles",
          "dambreak": "Dam Break"}
@@ -96,22 +98,7 @@ def simulate(spec):
     """Every combination of the spec's values run through hpcplan.sim.run; the per-run and
     per-replan rows, each value as its CSV cell would read (the tables below take text)."""
     import itertools
-    # The build tree's package when no other is on the path.
-    sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build",
-                                 "python"))
-    try:
-        import hpcplan
-    except ImportError as e:
-        sys.exit(f"sim_report: error: --simulate needs the Python package hpcplan ({e}); build "
-                 "it (scripts/build.sh) or set PYTHONPATH")
-
-    def value(text):
-        for cast in (int, float):
-            try:
-                return cast(text)
-            except ValueError:
-                pass
-        return text
+    hpcplan = import_hpcplan("sim_report", "--simulate")
 
     keys, choices = [], []
     for item in filter(None, (x.strip() for x in spec.split(";"))):
