@@ -9,7 +9,10 @@ bad value is refused with the CLI's own message (``ValueError``) and a default i
 import inspect
 import numbers
 import operator
+import os
 from collections.abc import Sequence
+
+import numpy as np
 
 _TYPES = {"flag": bool, "int": int, "float": float, "text": str,
           "int_list": Sequence[int], "float_list": Sequence[float]}
@@ -106,6 +109,8 @@ class Options:
                 continue
             kind, flag = o["kind"], o["option"]
             if kind == "flag":
+                if isinstance(value, np.bool_):
+                    value = bool(value)
                 if not isinstance(value, bool):
                     raise TypeError(f"{name} must be a bool, not {type(value).__name__}")
                 if value:
@@ -121,12 +126,25 @@ class Options:
                     (lambda v: _real(name, v))
                 out.append(f"{flag}=" + ",".join(cast(v) for v in value))
             else:
-                if not isinstance(value, (str, bytes)) and hasattr(value, "__fspath__"):
-                    value = value.__fspath__()
-                if not isinstance(value, str):
-                    raise TypeError(f"{name} must be a str, not {type(value).__name__}")
-                out.append(f"{flag}={value}")
+                value = text(name, value)
+                # "--name=" would be a missing value to CLI11; "--name" "" is the empty text the
+                # command line passes (and which the CLI reads as not given, or refuses).
+                out += [flag, ""] if value == "" else [f"{flag}={value}"]
         return out
+
+
+def text(name, value):
+    """A text option's or a file's value: a str, or a path (os.PathLike) as its str."""
+    if isinstance(value, os.PathLike):
+        value = os.fspath(value)
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a str or a path, not {type(value).__name__}")
+    return value
+
+
+def whole(name, value):
+    """A whole-number argument (an int or a NumPy integer, not a bool)."""
+    return _whole(name, value)
 
 
 STOP = inspect.Parameter("stop", inspect.Parameter.KEYWORD_ONLY, default=None)

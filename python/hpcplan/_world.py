@@ -24,7 +24,7 @@ def make_world_class(name, world, native, dims, obstacles_doc):
         """
 
         def __init__(self, path):
-            self._native = native(str(path))
+            self._native = native(_options.text("path", path))
 
         path = property(lambda self: self._native.path)
         bounds = property(lambda self: self._native.bounds)

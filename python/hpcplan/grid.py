@@ -69,7 +69,7 @@ class Field:
     def levels(self, axis):
         """Axis ``axis``'s level (0..3) per coordinate: a read-only uint8 view of the field's
         table, valid as long as the field."""
-        return self._native.levels(axis)
+        return self._native.levels(_options.whole("axis", axis))
 
     def solve(self, **kwargs):
         given = _options.bind(_FIELD_SOLVE_SIGNATURE, "Field.solve", kwargs)

@@ -35,8 +35,7 @@ class Fluid:
 
     def __init__(self, **kwargs):
         given = _options.bind(_INIT_SIGNATURE, "Fluid", kwargs)
-        stop = given.pop("stop", None)
-        self._native = _hpcplan.Fluid(_OPTIONS.tokens(given), stop)
+        self._native = _hpcplan.Fluid(_OPTIONS.tokens(given))
 
     @classmethod
     def restart(cls, path, **kwargs):
@@ -45,7 +44,8 @@ class Fluid:
         fluid."""
         given = _options.bind(_RESTART_SIGNATURE, "Fluid.restart", kwargs)
         fluid = cls.__new__(cls)
-        fluid._native = _hpcplan.Fluid.restart(str(path), _RESTART.tokens(given))
+        fluid._native = _hpcplan.Fluid.restart(_options.text("path", path),
+                                               _RESTART.tokens(given))
         return fluid
 
     def step(self, frames=1, *, stop=None):
@@ -53,6 +53,9 @@ class Fluid:
         Returns this call's report: frame (the number of the last frame done), substeps,
         frame_ms, stable (False, with problem, once a frame ends unsound), interrupted (a stop
         or Ctrl-C ended it at a frame's end; Ctrl-C then raises KeyboardInterrupt)."""
+        frames = _options.whole("frames", frames)
+        if frames < 1:
+            raise ValueError("frames must be at least 1")
         return self._native.step(frames, stop)
 
     def report(self):
@@ -63,11 +66,11 @@ class Fluid:
         """Writes the current frame into ``dir`` (fluid_<frame>.vtu, boxes_<frame>.vtu and the
         series fluid.pvd, as hpcplan sph --vtk does; ParaView opens fluid.pvd). Repeated calls
         add frames to the series."""
-        self._native.write_vtk(str(dir))
+        self._native.write_vtk(_options.text("dir", dir))
 
     def checkpoint(self, path):
         """Saves the whole state, atomically (RuntimeError if the state is unsound)."""
-        self._native.checkpoint(str(path))
+        self._native.checkpoint(_options.text("path", path))
 
     frame = property(lambda self: self._native.frame, doc="frames done")
     time = property(lambda self: self._native.time, doc="simulated seconds")
@@ -101,7 +104,8 @@ class Fluid:
                 f"particles={self.fluid_count}, frame={self.frame}, time={self.time:.3f})")
 
 
-_INIT_SIGNATURE = _options.make(Fluid.__init__, _OPTIONS, method=True, summary="""
+_INIT_SIGNATURE = _options.make(Fluid.__init__, _OPTIONS, method=True, trailing=(), extra_doc="",
+                                summary="""
 A new fluid of hpcplan sph's problem options, built with the GIL released.""")
 _RESTART_SIGNATURE = _options.make(Fluid.restart.__func__, _RESTART, trailing=(), extra_doc="",
                                    summary=Fluid.restart.__doc__)

@@ -1,7 +1,9 @@
 #include "bridge.hpp"
 
 #include <Python.h>
+#include <omp.h>
 #include <pythread.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <exception>
@@ -12,6 +14,14 @@
 #include "hpcplan/python/interrupt_relay.hpp"
 
 namespace hpcplan::python {
+
+OmpThreads::OmpThreads(int threads) : before_(omp_get_max_threads()), set_(threads > 0) {
+  if (set_) omp_set_num_threads(threads);
+}
+
+OmpThreads::~OmpThreads() {
+  if (set_) omp_set_num_threads(before_);
+}
 
 void parse_options(CLI::App& command, const std::vector<std::string>& tokens) {
   std::vector<std::string> reversed(tokens.rbegin(), tokens.rend());  // CLI11's order
@@ -74,9 +84,15 @@ py::object to_python(const nlohmann::json& v) {
 
 namespace {
 
+// Python's main thread: read again in a forked child, whose main thread is the one that forked.
 bool on_main_thread() {
-  static const unsigned long main_ident =
-      py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
+  static pid_t read_in = 0;
+  static unsigned long main_ident = 0;
+  if (read_in != getpid()) {
+    main_ident =
+        py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
+    read_in = getpid();
+  }
   return PyThread_get_thread_ident() == main_ident;
 }
 

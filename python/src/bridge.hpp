@@ -84,6 +84,21 @@ py::array read_only_view(const T* data, std::vector<py::ssize_t> shape,
   return a;
 }
 
+// The OpenMP threads of the calling thread for one call, put back after it however it ends: one
+// thread (Python's main thread, most often) makes many calls, and one call's --threads must not
+// become the next call's. 0 leaves them as they are.
+class OmpThreads {
+ public:
+  explicit OmpThreads(int threads);
+  ~OmpThreads();
+  OmpThreads(const OmpThreads&) = delete;
+  OmpThreads& operator=(const OmpThreads&) = delete;
+
+ private:
+  int before_;
+  bool set_;
+};
+
 // What a call does on a Ctrl-C: end at its next safe boundary with its checkpoint
 // (interrupt: the dense lattice search with checkpoint=, a fluid step, a simulation), or
 // stop at once (cancel: everything else, whose answer is then status cancelled).

@@ -3,8 +3,10 @@
 #include <omp.h>
 
 #include <atomic>
+#include <filesystem>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,7 @@
 #include "hpcplan/cli/fluid_options.hpp"
 #include "hpcplan/cli/fluid_session.hpp"
 #include "hpcplan/cli/vtk_dir.hpp"
+#include "hpcplan/core/atomic_file.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/io/sph_report.hpp"
 #include "hpcplan/io/vtk_fluid.hpp"
@@ -21,25 +24,6 @@
 namespace hpcplan::python {
 
 namespace {
-
-// The OpenMP threads of the calling thread for one call, put back after it: one thread (Python's
-// main thread, most often) makes many calls, and one fluid's --threads must not become the
-// next call's.
-class OmpThreads {
- public:
-  explicit OmpThreads(int threads) : before_(omp_get_max_threads()), set_(threads > 0) {
-    if (set_) omp_set_num_threads(threads);
-  }
-  ~OmpThreads() {
-    if (set_) omp_set_num_threads(before_);
-  }
-  OmpThreads(const OmpThreads&) = delete;
-  OmpThreads& operator=(const OmpThreads&) = delete;
-
- private:
-  int before_;
-  bool set_;
-};
 
 class Fluid {
  public:
@@ -72,13 +56,29 @@ class Fluid {
   py::dict step(std::uint64_t frames, const StopSource* stop) {
     const Use use(*this);
     if (frames == 0) throw InputError("frames must be at least 1");
+    // The totals are kept inside the call, so that a step ended by Ctrl-C (which then raises
+    // KeyboardInterrupt) still counts the frames it made.
     const sph::RunReport r = call_released<sph::RunReport>(
         [&](const cli::RunControl& control) {
           const OmpThreads threads(threads_);
-          return session_->advance(frames, {}, [&] { return control.should_stop(); });
+          sph::RunReport done =
+              session_->advance(frames, {}, [&] { return control.should_stop(); });
+          add_to_total(done);
+          return done;
         },
         stop, OnCtrlC::interrupt);
-    // The whole life's report: frames and substeps so far, every frame's times.
+    py::dict d;
+    d["frame"] = r.frames;
+    d["substeps"] = r.substeps;
+    d["frame_ms"] = r.frame_ms;
+    d["stable"] = r.stable;
+    d["problem"] = r.problem;
+    d["interrupted"] = r.interrupted;
+    return d;
+  }
+
+  // The whole life's report: frames and substeps so far, every frame's times.
+  void add_to_total(const sph::RunReport& r) {
     total_.frames = r.frames;
     total_.substeps += r.substeps;
     total_.frame_ms.insert(total_.frame_ms.end(), r.frame_ms.begin(), r.frame_ms.end());
@@ -88,14 +88,6 @@ class Fluid {
       total_.unstable_frame = r.unstable_frame;
       total_.problem = r.problem;
     }
-    py::dict d;
-    d["frame"] = r.frames;
-    d["substeps"] = r.substeps;
-    d["frame_ms"] = r.frame_ms;
-    d["stable"] = r.stable;
-    d["problem"] = r.problem;
-    d["interrupted"] = r.interrupted;
-    return d;
   }
 
   // hpcplan sph --json's object for the frames run so far.
@@ -112,29 +104,42 @@ class Fluid {
 
   void write_vtk(const std::string& dir) {
     const Use use(*this);
-    auto it = vtk_.find(dir);
+    cli::prepare_vtk_dir(dir);  // the CLI's checks and messages (created if its parent exists)
+    const std::string key = std::filesystem::weakly_canonical(dir).string();  // one series a folder
+    auto it = vtk_.find(key);
     if (it == vtk_.end()) {
-      cli::prepare_vtk_dir(dir);
       auto series = std::make_unique<io::VtkSeries>(dir);
       if (session_->restarted())  // the frames the interrupted run wrote there
         series->resume(session_->restarted_at_frame(), session_->fluid().state().params.frame_dt);
-      it = vtk_.emplace(dir, std::move(series)).first;
+      it = vtk_.emplace(key, Series{std::move(series), {}}).first;
     }
-    it->second->write(session_->frame(), session_->fluid().full_state());
+    // A frame already in the series is the same state: it is not written twice.
+    if (!it->second.frames.insert(session_->frame()).second) return;
+    it->second.series->write(session_->frame(), session_->fluid().full_state());
   }
 
   void checkpoint(const std::string& path) {
     const Use use(*this);
+    if (path.empty()) throw InputError("--checkpoint: an empty path");
+    require_writable_destination(path, "--checkpoint");
     if (!session_->write_checkpoint(path))
       throw RunError("the fluid's state is unsound (" +
                      sph::first_problem(session_->fluid().full_state()) +
                      "): no checkpoint written to '" + path + "'");
   }
 
-  // The state with positions current (state()) or every array current (full_state()).
-  const sph::FluidState& state(bool every_array) const {
+  // `read(session)` while no step runs (RuntimeError while one does): every property reads the
+  // fluid this way, so no reader sees a step in progress.
+  template <class Read>
+  auto read(Read read) const {
     const Use use(*this);
-    return every_array ? session_->fluid().full_state() : session_->fluid().state();
+    return read(*session_);
+  }
+  // The same with the state: its positions current (state()) or every array (full_state()).
+  template <class Read>
+  auto read_state(bool every_array, Read read) const {
+    const Use use(*this);
+    return read(every_array ? session_->fluid().full_state() : session_->fluid().state());
   }
 
  private:
@@ -142,11 +147,15 @@ class Fluid {
   int threads_;
   std::string backend_;
   sph::RunReport total_;
-  std::map<std::string, std::unique_ptr<io::VtkSeries>> vtk_;
+  struct Series {
+    std::unique_ptr<io::VtkSeries> series;
+    std::set<std::uint64_t> frames;  // written by this fluid
+  };
+  std::map<std::string, Series> vtk_;
   mutable std::atomic<bool> busy_{false};
 };
 
-std::unique_ptr<Fluid> make(const std::vector<std::string>& tokens, const StopSource* stop) {
+std::unique_ptr<Fluid> make(const std::vector<std::string>& tokens) {
   cli::FluidArgs a;
   CLI::App command("hpcplan sph");
   cli::add_fluid_options(&command, a);
@@ -160,11 +169,12 @@ std::unique_ptr<Fluid> make(const std::vector<std::string>& tokens, const StopSo
         const OmpThreads threads(a.threads);
         return std::make_unique<cli::FluidSession>(o, a.backend);
       },
-      stop);
+      nullptr);
   return std::make_unique<Fluid>(std::move(session), a.threads, a.backend);
 }
 
 std::unique_ptr<Fluid> restart(const std::string& path, const std::vector<std::string>& tokens) {
+  if (path.empty()) throw InputError("--restart: an empty path");
   cli::FluidArgs a;
   CLI::App command("hpcplan sph");
   cli::add_fluid_options(&command, a);
@@ -198,8 +208,22 @@ py::array column_view(py::object self, const sph::Column<T>& first, std::size_t 
 template <class Pick>
 auto view_property(bool every_array, int components, Pick pick) {
   return [every_array, components, pick](py::object self) {
-    const sph::FluidState& s = self.cast<const Fluid&>().state(every_array);
-    return column_view(self, pick(s.particles), s.particles.capacity(), components);
+    return self.cast<const Fluid&>().read_state(every_array, [&](const sph::FluidState& s) {
+      return column_view(self, pick(s.particles), s.particles.capacity(), components);
+    });
+  };
+}
+
+// A property read from the session while no step runs.
+template <class Get>
+auto session_property(Get get) {
+  return
+      [get](const Fluid& f) { return f.read([&](const cli::FluidSession& s) { return get(s); }); };
+}
+template <class Get>
+auto state_property(Get get) {
+  return [get](const Fluid& f) {
+    return f.read_state(false, [&](const sph::FluidState& s) { return get(s); });
   };
 }
 
@@ -213,36 +237,40 @@ void bind_fluid(py::module_& m) {
     return describe(command);
   });
   py::class_<Fluid>(m, "Fluid")
-      .def(py::init(&make), py::arg("tokens"), py::arg("stop") = nullptr)
+      .def(py::init(&make), py::arg("tokens"))
       .def_static("restart", &restart, py::arg("path"), py::arg("tokens"))
       .def("step", &Fluid::step, py::arg("frames") = 1, py::arg("stop") = nullptr)
       .def("report", &Fluid::report)
       .def("write_vtk", &Fluid::write_vtk, py::arg("dir"))
       .def("checkpoint", &Fluid::checkpoint, py::arg("path"))
-      .def_property_readonly("frame", [](const Fluid& f) { return f.session().frame(); })
-      .def_property_readonly("time", [](const Fluid& f) { return f.state(false).time; })
-      .def_property_readonly("substeps", [](const Fluid& f) { return f.state(false).substeps; })
-      .def_property_readonly("size", [](const Fluid& f) { return f.state(false).particles.size(); })
+      .def_property_readonly("frame",
+                             session_property([](const cli::FluidSession& s) { return s.frame(); }))
+      .def_property_readonly("time",
+                             state_property([](const sph::FluidState& s) { return s.time; }))
+      .def_property_readonly("substeps",
+                             state_property([](const sph::FluidState& s) { return s.substeps; }))
+      .def_property_readonly(
+          "size", state_property([](const sph::FluidState& s) { return s.particles.size(); }))
       .def_property_readonly("fluid_count",
-                             [](const Fluid& f) { return f.state(false).fluid_count; })
-      .def_property_readonly("backend",
-                             [](const Fluid& f) { return f.session().fluid().backend().name(); })
+                             state_property([](const sph::FluidState& s) { return s.fluid_count; }))
+      .def_property_readonly("backend", session_property([](const cli::FluidSession& s) {
+                               return s.fluid().backend().name();
+                             }))
       .def_property_readonly("threads", &Fluid::threads)
-      .def_property_readonly("options",
-                             [](const Fluid& f) {
-                               const sph::FluidOptions& o = f.session().options();
+      .def_property_readonly("options", session_property([](const cli::FluidSession& s) {
+                               const sph::FluidOptions& o = s.options();
                                py::dict d;
                                d["preset"] = std::string(sph::to_string(o.preset));
                                d["scenario"] = std::string(sph::to_string(o.scenario));
                                d["particles"] = o.particles;
                                d["seed"] = o.seed;
                                return d;
-                             })
+                             }))
       .def_property_readonly("restarted_at_frame",
-                             [](const Fluid& f) -> py::object {
-                               if (!f.session().restarted()) return py::none();
-                               return py::int_(f.session().restarted_at_frame());
-                             })
+                             session_property([](const cli::FluidSession& s) -> py::object {
+                               if (!s.restarted()) return py::none();
+                               return py::int_(s.restarted_at_frame());
+                             }))
       .def_property_readonly("positions",
                              view_property(
                                  false, 3, [](const sph::Particles& p) -> auto& { return p.x; }))
@@ -262,29 +290,29 @@ void bind_fluid(py::module_& m) {
                              view_property(
                                  false, 1, [](const sph::Particles& p) -> auto& { return p.wall; }))
       .def_property_readonly(
-          "boxes",
-          [](const Fluid& f) {
-            const auto& boxes = f.state(false).boxes;
-            py::array_t<double> a({static_cast<py::ssize_t>(boxes.size()), py::ssize_t{9}});
+          "boxes", state_property([](const sph::FluidState& s) {
+            py::array_t<double> a({static_cast<py::ssize_t>(s.boxes.size()), py::ssize_t{9}});
             double* out = a.mutable_data();
-            for (const sph::MovingBox& b : boxes) {
+            for (const sph::MovingBox& b : s.boxes) {
               out = std::copy(b.box.lo.begin(), b.box.lo.end(), out);
               out = std::copy(b.box.hi.begin(), b.box.hi.end(), out);
               out = std::copy(b.velocity.begin(), b.velocity.end(), out);
             }
             return a;
-          })
-      .def_property_readonly("probes", [](const Fluid& f) {
-        const sph::Probes& p = f.session().probes();
-        py::dict d;
-        d["columns"] = p.columns;
-        const py::ssize_t width = static_cast<py::ssize_t>(p.columns.size());
-        py::array_t<double> rows({static_cast<py::ssize_t>(p.rows.size()), width});
-        double* out = rows.mutable_data();
-        for (const std::vector<double>& row : p.rows) out = std::copy(row.begin(), row.end(), out);
-        d["rows"] = std::move(rows);
-        return d;
-      });
+          }))
+      .def_property_readonly(
+          "probes", session_property([](const cli::FluidSession& s) {
+            const sph::Probes& p = s.probes();
+            py::dict d;
+            d["columns"] = p.columns;
+            const py::ssize_t width = static_cast<py::ssize_t>(p.columns.size());
+            py::array_t<double> rows({static_cast<py::ssize_t>(p.rows.size()), width});
+            double* out = rows.mutable_data();
+            for (const std::vector<double>& row : p.rows)
+              out = std::copy(row.begin(), row.end(), out);
+            d["rows"] = std::move(rows);
+            return d;
+          }));
 }
 
 }  // namespace hpcplan::python

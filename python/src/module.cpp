@@ -24,13 +24,24 @@ PYBIND11_MODULE(_hpcplan, m) {
   namespace py = pybind11;
   using hpcplan::python::StopSource;
   m.doc() = "hpcplan's engine (use the package hpcplan: hpcplan.grid, hpcplan.map3d, ...)";
-  // Bad input is a ValueError, a run that failed a RuntimeError, each with the CLI's message.
+  // As the CLI's exit codes: bad input is a ValueError (exit 2), anything else that ends a run
+  // a RuntimeError (exit 1), out of memory a MemoryError, each with the CLI's message.
+  // pybind11's own exceptions (a wrong argument type, a Python error passing through) are left
+  // to pybind11.
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const py::error_already_set&) {
+      throw;
+    } catch (const py::builtin_exception&) {
+      throw;
     } catch (const hpcplan::InputError& e) {
       PyErr_SetString(PyExc_ValueError, one_line(e.what()).c_str());
-    } catch (const hpcplan::RunError& e) {
+    } catch (const std::bad_alloc&) {
+      PyErr_SetString(PyExc_MemoryError,
+                      "out of memory; lower the problem size (--max-states, --particles, "
+                      "--memory-mb)");
+    } catch (const std::exception& e) {
       PyErr_SetString(PyExc_RuntimeError, one_line(e.what()).c_str());
     }
   });

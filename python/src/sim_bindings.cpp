@@ -1,6 +1,4 @@
 // hpcplan.sim: seed 000's simulator from Python (hpcplan sim's options, run and answers).
-#include <omp.h>
-
 #include <string>
 #include <variant>
 #include <vector>
@@ -41,10 +39,8 @@ py::tuple run(const std::vector<std::string>& tokens, const StopSource* stop) {
   parse_options(command, tokens);
   const io::SimInvocation inv = call_released<io::SimInvocation>(
       [&](const cli::RunControl& control) {
-        const int before = omp_get_max_threads();  // run_sim sets --threads on this thread
-        io::SimInvocation r = cli::run_sim(a, control);
-        omp_set_num_threads(before);
-        return r;
+        const OmpThreads threads(a.threads);  // run_sim sets --threads on this thread: put back
+        return cli::run_sim(a, control);
       },
       stop, OnCtrlC::interrupt);
   const bool timings = !a.no_timings;

@@ -1,13 +1,16 @@
 // hpcplan.map3d and hpcplan.sphere2d: a world file loaded once (seed 004's box maps, seed
 // 003's sphere worlds), planned in with any world planner (hpcplan map3d / sphere2d's options
 // and answers), and queried in bulk.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <type_traits>
 #include <vector>
 
 #include "bridge.hpp"
+#include "hpcplan/cli/point_option.hpp"
 #include "hpcplan/cli/world_options.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/env/box_map_io.hpp"
@@ -29,19 +32,22 @@ struct World {
 template <class Map>
 constexpr int kDimOf = std::remove_cvref_t<decltype(std::declval<Map>().world)>::kDim;
 
+// A point given from Python, read as the CLI reads --start and --goal: its coordinates
+// written as that option's text and parsed by the CLI's own parser (cli/point_option.hpp), so
+// a wrong count or a non-finite coordinate gets the CLI's message.
 template <int D>
-env::Vec<D> point_of(const py::handle& value, const char* what) {
+env::Vec<D> point_of(const py::handle& value, const char* option) {
   const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
-  if (!a || a.ndim() != 1 || a.shape(0) != D)
-    throw InputError(std::string(what) + " needs " + std::to_string(D) + " coordinates");
-  env::Vec<D> p{};
-  for (int k = 0; k < D; ++k) {
-    p[k] = a.data()[k];
-    if (!std::isfinite(p[k]))
-      throw InputError(std::string(what) + ": coordinate " + std::to_string(k) +
-                       " is not a finite number");
+  if (!a || a.ndim() != 1)
+    throw InputError(std::string(option) + " needs " + std::to_string(D) +
+                     " comma-separated coordinates");
+  std::string text;
+  for (py::ssize_t k = 0; k < a.shape(0); ++k) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", a.data()[k]);
+    text += (k ? "," : "") + std::string(buf);
   }
-  return p;
+  return cli::parse_point<D>(text, option);
 }
 
 template <int D>
@@ -61,14 +67,15 @@ py::tuple plan(const World<Map>& w, const py::object& start, const py::object& g
       "hpcplan " + world_name, tokens, [&](CLI::App* c, plan::WorldPlanOptions& o) {
         cli::add_world_planner_options(c, o, world_name);
       });
+  // The CLI's rule: the point given, else the map's own line.
   auto query = [&](const py::object& given, const std::optional<env::Vec<D>>& from_map,
-                   const char* what) {
-    if (!given.is_none()) return point_of<D>(given, what);
+                   const char* option, const char* what) {
+    if (!given.is_none()) return point_of<D>(given, option);
     if (from_map) return *from_map;
-    throw InputError(std::string("no ") + what + " given and the map has no " + what + " line");
+    throw InputError(std::string("no ") + option + " given and the map has no " + what + " line");
   };
-  const env::Vec<D> a = query(start, w.map->start, "start");
-  const env::Vec<D> b = query(goal, w.map->goal, "goal");
+  const env::Vec<D> a = query(start, w.map->start, "--start", "start");
+  const env::Vec<D> b = query(goal, w.map->goal, "--goal", "goal");
   struct Answer {
     plan::WorldPlan<D> plan;
     nlohmann::json json;
@@ -106,7 +113,10 @@ py::object points_free(const World<Map>& w, const py::array& points) {
     for (py::ssize_t i = 0; i < n; ++i) {
       env::Vec<D> q;
       std::copy_n(p.data() + i * D, D, q.begin());
-      out.mutable_data()[i] = w.map->world.point_free(q);
+      // A point that is not finite is nowhere in the world: not free.
+      const bool finite =
+          std::all_of(q.begin(), q.end(), [](double c) { return std::isfinite(c); });
+      out.mutable_data()[i] = finite && w.map->world.point_free(q);
     }
   }
   if (p.ndim() == 1) return py::bool_(out.data()[0]);
@@ -127,6 +137,9 @@ py::class_<World<Map>> bind_world(py::module_& m, const char* class_name,
   });
   py::class_<W> c(m, class_name);
   c.def(py::init([load](const std::string& path) {
+          // The file checked as the CLI checks --map, with its message.
+          const std::string problem = CLI::ExistingFile(path);
+          if (!problem.empty()) throw InputError("--map: " + problem);
           return W{std::make_shared<const Map>(load(path)), path};
         }),
         py::arg("path"))

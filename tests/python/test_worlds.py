@@ -103,12 +103,36 @@ def test_bad_input_is_a_value_error_with_the_cli_message(maps, tmp_path):
     with pytest.raises(ValueError) as e:
         hpcplan.map3d.load(bad)
     assert str(e.value) == message
-    with pytest.raises(ValueError, match="needs 3 coordinates"):
-        world.plan(start=(1, 2))
-    with pytest.raises(ValueError, match="not a finite number"):
-        world.plan(goal=(1, float("nan"), 2))
-    with pytest.raises(ValueError, match="cannot open"):
-        hpcplan.map3d.load(tmp_path / "missing.txt")
+    # Points and files get the CLI's words for the same mistake.
+    for start, text in (((1, 2), "1,2"), ((1, float("nan"), 2), "1,nan,2")):
+        message = cli_error("map3d", "--map", forest, "--start", text)
+        with pytest.raises(ValueError) as e:
+            world.plan(start=start)
+        assert str(e.value) == message
+    for missing in (tmp_path / "missing.txt", tmp_path):
+        message = cli_error("map3d", "--map", missing)
+        with pytest.raises(ValueError) as e:
+            hpcplan.map3d.load(missing)
+        assert str(e.value) == message
+    nogoal = tmp_path / "nogoal.txt"
+    nogoal.write_text("boundary 0 0 0 10 10 10\nstart 1 1 1\n")
+    message = cli_error("map3d", "--map", nogoal)
+    with pytest.raises(ValueError) as e:
+        hpcplan.map3d.load(nogoal).plan()
+    assert str(e.value) == message
+    for bad in (None, 5, b"/x"):
+        with pytest.raises(TypeError, match="path must be a str or a path"):
+            hpcplan.map3d.load(bad)
+
+
+def test_free_answers_the_exact_test_and_nothing_not_finite_is_free(maps):
+    world = hpcplan.map3d.load(os.path.join(maps, "single_box.txt"))
+    lo, hi = world.obstacles[0, :3], world.obstacles[0, 3:]
+    inside, outside = (lo + hi) / 2, world.bounds[0] + 0.01
+    assert world.free(outside) and not world.free(inside)
+    assert world.free([[np.nan, 1, 1], [1, np.inf, 1]]).tolist() == [False, False]
+    disc = hpcplan.sphere2d.load(os.path.join(maps, "sphere_world.txt"))
+    assert not disc.free([np.nan, 0.0])
 
 
 def test_no_path_is_an_answer(tmp_path):
