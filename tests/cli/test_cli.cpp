@@ -377,6 +377,20 @@ TEST(Cli, AnOutputThatCannotBeWrittenIsExitOne) {
 
 // Every numeric option of every subcommand, tried with what must be refused: negative values
 // (none of these options takes one), NaN, infinities, overflow, words and a value past its range.
+// A real option's bounds are its own: the lowest value it admits is accepted as written, though
+// the long double the text reads as lies below the double the bound is (0.001 was refused).
+TEST(Cli, ARealOptionsBoundIsInItsRange) {
+  const CliRun at = run("sim --particles 100 --settle-frames 0 --max-sim-s 0.001 --json");
+  EXPECT_EQ(at.code, 0) << at.err;
+  const CliRun below = run("sim --particles 100 --settle-frames 0 --max-sim-s 0.000999");
+  EXPECT_EQ(below.code, 2);
+  EXPECT_NE(below.err.find("'0.000999' is out of range [0.001, 1e+09]"), std::string::npos)
+      << below.err;
+  const CliRun tiny = run("sim --particles 100 --settle-frames 0 --occupancy density "
+                          "--density-support 0.000001 --max-sim-s 0.02");
+  EXPECT_EQ(tiny.code, 0) << tiny.err;
+}
+
 TEST(Cli, EveryNumericOptionRefusesBadValues) {
   const std::string map = std::string(" --map ") + HPCPLAN_MAPS_DIR + "/single_box.txt";
   const std::string sphere = std::string(" --map ") + HPCPLAN_MAPS_DIR + "/sphere_world.txt";

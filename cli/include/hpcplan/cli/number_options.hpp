@@ -41,7 +41,12 @@ CLI::Validator number_check(long double lo, long double hi, bool show_range = tr
           if (digits[0] == '0' && std::isdigit(static_cast<unsigned char>(digits[1])))
             return "'" + text + "' has a leading zero (which would make it octal)";
         }
-        if (v < lo || v > hi)
+        // A real option compares the value it will hold (the text read as T) with its bounds
+        // as T holds them: "1e-9" against a bound of 1e-9 is in range, although the long
+        // double 1e-9 is below the double nearest to it.
+        const long double held =
+            std::is_floating_point_v<T> ? static_cast<long double>(static_cast<T>(v)) : v;
+        if (held < lo || held > hi)
           return "'" + text + "' is out of range [" + CLI::detail::to_string(static_cast<T>(lo)) +
                  ", " + CLI::detail::to_string(static_cast<T>(hi)) + "]";
         return {};
