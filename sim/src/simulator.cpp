@@ -160,11 +160,15 @@ bool run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
       o.backend);
   rec.particle_count = fluid.state().fluid_count;
   const double dt = fluid.state().params.frame_dt;
-  for (int f = 0, settle = settle_frames(o); f < settle; ++f)
+  for (int f = 0, settle = settle_frames(o); f < settle; ++f) {
     if (const auto r = fluid.advance_frame(); !r.problem.empty()) {
       rec.end = RunEnd::fluid_unstable;
       return true;
     }
+    // The settling frames are frames too: a stop asked for during them ends the run here (a
+    // large fluid settles for seconds of wall time before the robot is placed).
+    if (should_stop && should_stop()) return false;
+  }
 
   Placement at;
   if (o.place) {
