@@ -12,16 +12,8 @@
 
 namespace {
 
-// Error messages are promised to be one line.
-std::string one_line(std::string s) {
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
-}
-
 int report(int code, const std::string& message) {
-  std::fprintf(stderr, "hpcplan: error: %s\n", one_line(message).c_str());
+  std::fprintf(stderr, "hpcplan: error: %s\n", hpcplan::one_line(message).c_str());
   return code;
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "hpcplan/cli/planners_options.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/io/planners_json.hpp"
 
@@ -17,8 +18,7 @@ Action register_planners_command(CLI::App& app) {
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("planners", "List every planner, where it runs, its options");
   cmd->add_flag("--json", args->json, "Print one JSON object");
-  cmd->add_option("--world", args->world, "Only the planners of this setting")
-      ->check(CLI::IsMember({"grid", "map3d", "sphere2d", "ompl", "sim"}));
+  add_planners_world_option(cmd, args->world);
   return [args](const Context& context) {
     if (!context.is_root()) return kExitOk;
     const auto& registry = plan::PlannerRegistry::get();

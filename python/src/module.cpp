@@ -1,24 +1,12 @@
 // hpcplan._hpcplan: the engine's bindings, one part per area (grid, worlds, fluid, simulator),
 // under the pure-Python package `hpcplan` that gives them their signatures and result types.
-#include <set>
 #include <string>
 
 #include "bridge.hpp"
+#include "hpcplan/cli/planners_options.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/io/planners_json.hpp"
 #include "hpcplan/plan/planner_registry.hpp"
-
-namespace {
-
-// The CLI's messages are one line (cli/src/main.cpp); so are these exceptions'.
-std::string one_line(std::string s) {
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
-}
-
-}  // namespace
 
 PYBIND11_MODULE(_hpcplan, m) {
   namespace py = pybind11;
@@ -36,13 +24,13 @@ PYBIND11_MODULE(_hpcplan, m) {
     } catch (const py::builtin_exception&) {
       throw;
     } catch (const hpcplan::InputError& e) {
-      PyErr_SetString(PyExc_ValueError, one_line(e.what()).c_str());
+      PyErr_SetString(PyExc_ValueError, hpcplan::one_line(e.what()).c_str());
     } catch (const std::bad_alloc&) {
       PyErr_SetString(PyExc_MemoryError,
                       "out of memory; lower the problem size (--max-states, --particles, "
                       "--memory-mb)");
     } catch (const std::exception& e) {
-      PyErr_SetString(PyExc_RuntimeError, one_line(e.what()).c_str());
+      PyErr_SetString(PyExc_RuntimeError, hpcplan::one_line(e.what()).c_str());
     }
   });
   py::class_<StopSource>(m, "StopSource",
@@ -56,17 +44,13 @@ PYBIND11_MODULE(_hpcplan, m) {
   m.def(
       "planners",
       [](const std::string& world) {
-        const auto& registry = hpcplan::plan::PlannerRegistry::get();
-        if (!world.empty()) {
-          std::set<std::string> worlds;
-          for (const auto& p : registry.planners()) worlds.insert(p.worlds.begin(), p.worlds.end());
-          if (!worlds.count(world)) {
-            std::string known;
-            for (const std::string& w : worlds) known += (known.empty() ? "" : ", ") + w;
-            throw hpcplan::InputError("world '" + world + "' is not one of " + known);
-          }
-        }
-        return hpcplan::python::to_python(hpcplan::to_json(registry, world));
+        // --world parsed by the CLI's own option: the same setting names, the same refusal.
+        std::string setting;
+        CLI::App command("hpcplan planners");
+        hpcplan::cli::add_planners_world_option(&command, setting);
+        if (!world.empty()) hpcplan::python::parse_options(command, {"--world=" + world});
+        return hpcplan::python::to_python(
+            hpcplan::to_json(hpcplan::plan::PlannerRegistry::get(), setting));
       },
       py::arg("world") = "");
   hpcplan::python::bind_grid(m);

@@ -18,6 +18,15 @@ class RunError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Error messages are promised to be one line (the CLI's stderr line, the Python module's
+// exception): line breaks become spaces, trailing spaces go.
+inline std::string one_line(std::string message) {
+  for (char& c : message)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!message.empty() && message.back() == ' ') message.pop_back();
+  return message;
+}
+
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitRunFailure = 1;
 inline constexpr int kExitBadInput = 2;
