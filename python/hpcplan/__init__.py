@@ -15,12 +15,12 @@ message, a run failure RuntimeError. Long calls release the GIL; Ctrl-C stops th
 engine's stop token (KeyboardInterrupt), and a StopSource ends them from another thread.
 """
 from . import _hpcplan
-from ._hpcplan import StopSource
+from ._hpcplan import StopSource, __version__
 from ._results import GridResult, PlanResult, SimResult
 from . import grid, map3d, sim, sph, sphere2d
 
-__all__ = ["StopSource", "GridResult", "PlanResult", "SimResult", "grid", "map3d", "sphere2d",
-           "sph", "sim", "planners"]
+__all__ = ["__version__", "StopSource", "GridResult", "PlanResult", "SimResult", "grid",
+           "map3d", "sphere2d", "sph", "sim", "planners"]
 
 
 def planners(world=None):

@@ -11,6 +11,7 @@ import numbers
 import operator
 import os
 from collections.abc import Sequence
+from typing import Optional
 
 import numpy as np
 
@@ -76,6 +77,8 @@ class Options:
         for o in self.options:
             annotation = Sequence[int] if o["name"] in self.sequences else _TYPES[o["kind"]]
             default = inspect.Parameter.empty if o["required"] else _default(o)
+            if default is None:  # left out: the CLI's own default, whatever it derives
+                annotation = Optional[annotation]
             params.append(inspect.Parameter(o["name"], inspect.Parameter.KEYWORD_ONLY,
                                             default=default, annotation=annotation))
         return params
@@ -165,7 +168,7 @@ def make(function, options, leading=(), trailing=(STOP,), summary="", extra_doc=
                                   return_annotation=returns or inspect.Signature.empty)
     shown = list(signature.parameters.values())
     function.__signature__ = signature.replace(parameters=[_SELF] + shown) if method else signature
-    function.__doc__ = (summary.strip() + "\n\nParameters\n----------\n" + options.doc()
+    function.__doc__ = (inspect.cleandoc(summary) + "\n\nParameters\n----------\n" + options.doc()
                         + ("\n" + extra_doc if extra_doc else ""))
     return signature
 

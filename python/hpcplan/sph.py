@@ -110,5 +110,6 @@ A new fluid of hpcplan sph's problem options, built with the GIL released.""")
 _RESTART_SIGNATURE = _options.make(Fluid.restart.__func__, _RESTART, trailing=(), extra_doc="",
                                    summary=Fluid.restart.__doc__)
 Fluid.restart.__func__.__signature__ = inspect.Signature(
-    [inspect.Parameter("path", inspect.Parameter.POSITIONAL_OR_KEYWORD)]
+    [inspect.Parameter("cls", inspect.Parameter.POSITIONAL_ONLY),
+     inspect.Parameter("path", inspect.Parameter.POSITIONAL_OR_KEYWORD)]
     + list(_RESTART_SIGNATURE.parameters.values()))

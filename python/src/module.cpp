@@ -12,6 +12,7 @@ PYBIND11_MODULE(_hpcplan, m) {
   namespace py = pybind11;
   using hpcplan::python::StopSource;
   m.doc() = "hpcplan's engine (use the package hpcplan: hpcplan.grid, hpcplan.map3d, ...)";
+  m.attr("__version__") = HPCPLAN_VERSION_STRING;  // the project's, as the checkpoints carry it
   // As the CLI's exit codes: bad input is a ValueError (exit 2), anything else that ends a run
   // a RuntimeError (exit 1), out of memory a MemoryError, each with the CLI's message.
   // pybind11's own exceptions (a wrong argument type, a Python error passing through) are left

@@ -83,4 +83,5 @@ def test_planners_is_the_registry():
 def test_the_package_lists_its_parts():
     for name in hpcplan.__all__:
         assert hasattr(hpcplan, name)
+    assert re.fullmatch(r"\d+\.\d+\.\d+", hpcplan.__version__)
     assert "hpcplan.grid" in hpcplan.__doc__
