@@ -71,6 +71,15 @@ Args parse_cached(const std::string& key, const std::vector<std::string>& tokens
 // The options `command` declares (cli/option_catalog.hpp), as a list of dicts.
 py::list describe(const CLI::App& command);
 
+// The same for the command `register_options(app, args)` registers (the module's *_options()).
+template <class Args, class Register>
+py::list describe_options(const std::string& name, Register register_options) {
+  Args args;
+  CLI::App command(name);
+  register_options(&command, args);
+  return describe(command);
+}
+
 // A JSON value as the Python object json.loads would make of its text.
 py::object to_python(const nlohmann::json& value);
 

@@ -231,10 +231,8 @@ auto state_property(Get get) {
 
 void bind_fluid(py::module_& m) {
   m.def("fluid_options", [] {
-    cli::FluidArgs a;
-    CLI::App command("hpcplan sph");
-    cli::add_fluid_options(&command, a);
-    return describe(command);
+    return describe_options<cli::FluidArgs>(
+        "hpcplan sph", [](CLI::App* c, cli::FluidArgs& a) { cli::add_fluid_options(c, a); });
   });
   py::class_<Fluid>(m, "Fluid")
       .def(py::init(&make), py::arg("tokens"))

@@ -135,10 +135,8 @@ py::tuple solve(const std::vector<std::string>& tokens, const StopSource* stop,
 
 void bind_grid(py::module_& m) {
   m.def("grid_options", [] {
-    cli::GridArgs a;
-    CLI::App command("hpcplan grid");
-    cli::add_grid_options(&command, a);
-    return describe(command);
+    return describe_options<cli::GridArgs>(
+        "hpcplan grid", [](CLI::App* c, cli::GridArgs& a) { cli::add_grid_options(c, a); });
   });
   m.def(
       "grid_solve",

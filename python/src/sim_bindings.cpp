@@ -53,10 +53,8 @@ py::tuple run(const std::vector<std::string>& tokens, const StopSource* stop) {
 
 void bind_sim(py::module_& m) {
   m.def("sim_options", [] {
-    cli::SimArgs a;
-    CLI::App command("hpcplan sim");
-    cli::add_sim_options(&command, a);
-    return describe(command);
+    return describe_options<cli::SimArgs>(
+        "hpcplan sim", [](CLI::App* c, cli::SimArgs& a) { cli::add_sim_options(c, a); });
   });
   m.def("sim_run", &run, py::arg("tokens"), py::arg("stop") = nullptr);
 }

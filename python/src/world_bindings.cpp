@@ -130,10 +130,10 @@ py::class_<World<Map>> bind_world(py::module_& m, const char* class_name,
   using W = World<Map>;
   constexpr int D = kDimOf<Map>;
   m.def((world_name + "_options").c_str(), [world_name] {
-    plan::WorldPlanOptions options;
-    CLI::App command("hpcplan " + world_name);
-    cli::add_world_planner_options(&command, options, world_name);
-    return describe(command);
+    return describe_options<plan::WorldPlanOptions>(
+        "hpcplan " + world_name, [&](CLI::App* c, plan::WorldPlanOptions& o) {
+          cli::add_world_planner_options(c, o, world_name);
+        });
   });
   py::class_<W> c(m, class_name);
   c.def(py::init([load](const std::string& path) {
