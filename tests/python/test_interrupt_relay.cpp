@@ -8,6 +8,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <functional>
+#include <memory>
 #include <stdexcept>
 #include <stop_token>
 #include <thread>
@@ -45,6 +47,23 @@ void (*current_handler())(int) {
   return now.sa_handler;
 }
 
+// What a job's on_interrupt reaches. The relay thread may still be inside request_stop() when
+// the job has seen the stop and the test has ended (interrupt_relay.hpp: on_interrupt must own
+// what it uses), so each on_interrupt shares ownership of it; a stop_source on the test's
+// stack was freed under the relay thread's feet (ThreadSanitizer, 2 runs in 300).
+struct Relayed {
+  std::stop_source stop;
+  std::atomic<int> count{0};
+};
+
+// The on_interrupt that counts and stops.
+std::function<void()> count_and_stop(const std::shared_ptr<Relayed>& relayed) {
+  return [relayed] {
+    ++relayed->count;
+    relayed->stop.request_stop();
+  };
+}
+
 // Waits until `stop` is requested, at most `limit`.
 bool wait_for(const std::stop_source& stop, std::chrono::milliseconds limit) {
   const auto end = std::chrono::steady_clock::now() + limit;
@@ -56,8 +75,7 @@ bool wait_for(const std::stop_source& stop, std::chrono::milliseconds limit) {
 TEST(InterruptRelay, ASigintStopsTheJobAndStillReachesTheHandlerItReplaced) {
   const SigintHandler handler(count_sigint);
   handled = 0;
-  std::stop_source stop;
-  std::atomic<int> relayed{0};
+  const auto relayed = std::make_shared<Relayed>();
   const std::thread::id caller = std::this_thread::get_id();
   std::thread::id job_thread;
   bool stopped = false;
@@ -65,14 +83,11 @@ TEST(InterruptRelay, ASigintStopsTheJobAndStillReachesTheHandlerItReplaced) {
       [&] {
         job_thread = std::this_thread::get_id();
         std::thread([] { kill(getpid(), SIGINT); }).join();  // as a terminal's Ctrl-C
-        stopped = wait_for(stop, 5000ms);
+        stopped = wait_for(relayed->stop, 5000ms);
       },
-      [&] {
-        ++relayed;
-        stop.request_stop();
-      });
+      count_and_stop(relayed));
   EXPECT_TRUE(stopped);
-  EXPECT_EQ(relayed.load(), 1);
+  EXPECT_EQ(relayed->count.load(), 1);
   EXPECT_EQ(handled.load(), 1);
   EXPECT_EQ(job_thread, caller);
   EXPECT_EQ(current_handler(), &count_sigint);  // restored
@@ -97,49 +112,48 @@ TEST(InterruptRelay, ADefaultOrIgnoredSigintIsLeftAlone) {
 
 TEST(InterruptRelay, ARunInsideARunRelaysOnce) {
   const SigintHandler handler(count_sigint);
-  std::stop_source stop;
-  std::atomic<int> relayed{0};
+  const auto relayed = std::make_shared<Relayed>();
+  const auto inner = std::make_shared<Relayed>();
   InterruptRelay::run(
       [&] {
         InterruptRelay::run(
             [&] {
               kill(getpid(), SIGINT);
-              wait_for(stop, 5000ms);
+              wait_for(relayed->stop, 5000ms);
             },
-            [&] { ADD_FAILURE() << "the inner run relayed"; });
+            count_and_stop(inner));
       },
-      [&] {
-        ++relayed;
-        stop.request_stop();
-      });
-  EXPECT_EQ(relayed.load(), 1);
+      count_and_stop(relayed));
+  EXPECT_EQ(relayed->count.load(), 1);
+  EXPECT_EQ(inner->count.load(), 0);  // the inner run did not relay
   EXPECT_EQ(current_handler(), &count_sigint);
 }
 
 TEST(InterruptRelay, ASigintAfterTheJobReachesOnlyThePreviousHandler) {
   const SigintHandler handler(count_sigint);
   handled = 0;
-  std::atomic<int> relayed{0};
-  InterruptRelay::run([] {}, [&] { ++relayed; });
+  const auto relayed = std::make_shared<Relayed>();
+  InterruptRelay::run([] {}, count_and_stop(relayed));
   kill(getpid(), SIGINT);
   const auto end = std::chrono::steady_clock::now() + 2000ms;
   while (handled.load() == 0 && std::chrono::steady_clock::now() < end)
     std::this_thread::sleep_for(1ms);
   std::this_thread::sleep_for(20ms);  // time for a relay that should not happen
   EXPECT_EQ(handled.load(), 1);
-  EXPECT_EQ(relayed.load(), 0);
+  EXPECT_EQ(relayed->count.load(), 0);
 }
 
 TEST(InterruptRelay, ManyJobsInARowEachRelayTheirOwnSignal) {
   const SigintHandler handler(count_sigint);
   for (int k = 0; k < 20; ++k) {
-    std::stop_source stop;
+    const auto relayed = std::make_shared<Relayed>();
     InterruptRelay::run(
         [&] {
           kill(getpid(), SIGINT);
-          EXPECT_TRUE(wait_for(stop, 5000ms)) << k;
+          EXPECT_TRUE(wait_for(relayed->stop, 5000ms)) << k;
         },
-        [&stop] { stop.request_stop(); });
+        count_and_stop(relayed));
+    EXPECT_EQ(relayed->count.load(), 1) << k;
   }
 }
 
