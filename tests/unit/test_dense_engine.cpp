@@ -238,7 +238,7 @@ TEST(DenseKernel, CountsEveryLegalMoveOnce) {
     for (dense::Word w = f; w; w &= w - 1) {
       int c[kMaxDims];
       layout.cell(tile, std::countr_zero(w), c);
-      o.neighbours(std::vector<int>(c, c + 4), [&](const std::vector<int>&, double) { ++counted; });
+      o.neighbours(std::vector<int>(c, c + 4), [&](std::span<const int>, double) { ++counted; });
     }
   }
   EXPECT_GT(counted, 1000u);
