@@ -1,6 +1,8 @@
 #include "hpcplan/core/atomic_file.hpp"
 
+#include <atomic>
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -13,7 +15,12 @@
 namespace hpcplan {
 
 void write_file_atomically(const std::string& path, std::string_view content) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  // One temporary name per call, not per process: the Python module writes from several
+  // threads of one process, and two calls writing the same destination shared one temporary
+  // (each truncated the other's, and the second rename found nothing to move).
+  static std::atomic<std::uint64_t> calls{0};
+  const std::string tmp =
+      path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(++calls);
   auto fail = [&](const char* step) {
     const std::string why = std::strerror(errno);
     std::remove(tmp.c_str());

@@ -10,6 +10,9 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
+#include <atomic>
 
 #include "hpcplan/core/atomic_file.hpp"
 #include "hpcplan/core/error.hpp"
@@ -103,6 +106,32 @@ TEST_F(AtomicFile, AFailedWriteKeepsTheOldContentAndRemovesTheTemporary) {
   std::signal(SIGXFSZ, old_handler);
   EXPECT_NE(why.find("cannot write '" + file.string() + "'"), std::string::npos) << why;
   EXPECT_EQ(read(file), "old result\n");
+  EXPECT_EQ(strays(file), 0u);
+}
+
+// Threads of one process writing the same destination (the Python module's calls, each with
+// the GIL released): every write succeeds and the file is always one writer's whole content.
+// With one temporary name per process, the writers truncated each other's temporary and the
+// later renames failed ("No such file or directory").
+TEST_F(AtomicFile, ThreadsWritingOneFileEachLeaveAWholeFile) {
+  const fs::path file = dir_ / "same.json";
+  constexpr int kThreads = 4, kWrites = 40;
+  std::atomic<int> failed{0}, torn{0};
+  std::vector<std::thread> writers;
+  for (int t = 0; t < kThreads; ++t)
+    writers.emplace_back([&, t] {
+      const std::string mine(10000 + t, static_cast<char>('a' + t));
+      for (int i = 0; i < kWrites; ++i) {
+        if (!failure(file, mine).empty()) ++failed;
+        const std::string now = read(file);
+        if (now.size() < 10000 || now.find_first_not_of(now[0]) != std::string::npos ||
+            now.size() != 10000u + static_cast<unsigned>(now[0] - 'a'))
+          ++torn;
+      }
+    });
+  for (auto& w : writers) w.join();
+  EXPECT_EQ(failed.load(), 0);
+  EXPECT_EQ(torn.load(), 0);
   EXPECT_EQ(strays(file), 0u);
 }
 
