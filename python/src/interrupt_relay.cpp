@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cstdint>
 #include <mutex>
 #include <thread>
 
@@ -21,6 +22,15 @@ struct Relay {
   sem_t started;  // posted once by a new relay thread, from its own loop
   std::mutex m;
   std::function<void()> current;  // the job's on_interrupt, while a job runs
+  std::uint64_t current_run = 0;  // that job's run number (under m)
+  // Run numbers: each run() takes the next; `running` is the one under way (0: none), and
+  // `signalled` the one the latest SIGINT arrived during (0: none since the relay last looked).
+  // The relay calls on_interrupt only when the signalled run is the current one: a relay thread
+  // that woke late otherwise stopped the next call for a Ctrl-C that reached the one before.
+  std::uint64_t runs = 0;
+  std::atomic<std::uint64_t> running{0};
+  std::atomic<std::uint64_t> signalled{0};
+  static_assert(std::atomic<std::uint64_t>::is_always_lock_free);  // read in the handler
   pid_t owner = 0;                // the process whose relay thread exists
   std::atomic<bool> busy{false};  // a run() is under way
   struct sigaction replaced {};   // SIGINT's action before the relay (read by the handler)
@@ -36,10 +46,11 @@ void relay_loop(Relay* r) {
   for (;;) {
     while (sem_wait(&r->wake) != 0 && errno == EINTR) {
     }
+    const std::uint64_t run = r->signalled.exchange(0);
     std::function<void()> interrupt;
     {
       std::lock_guard lock(r->m);
-      interrupt = r->current;
+      if (run != 0 && run == r->current_run) interrupt = r->current;
     }
     if (interrupt) interrupt();
   }
@@ -68,6 +79,7 @@ void ensure_relay_thread(Relay& r) {
 extern "C" void relay_sigint(int signal, siginfo_t* info, void* context) {
   const int saved = errno;
   Relay& r = relay();
+  if (const std::uint64_t run = r.running.load(); run != 0) r.signalled.store(run);
   sem_post(&r.wake);
   const struct sigaction& next = r.replaced;
   if (next.sa_flags & SA_SIGINFO)
@@ -90,9 +102,11 @@ void InterruptRelay::run(const std::function<void()>& job, std::function<void()>
     bool installed = false;
     ~Done() {
       if (installed) sigaction(SIGINT, &r.replaced, nullptr);
+      r.running = 0;
       {
         std::lock_guard lock(r.m);
         r.current = nullptr;
+        r.current_run = 0;
       }
       r.busy = false;
     }
@@ -103,10 +117,13 @@ void InterruptRelay::run(const std::function<void()>& job, std::function<void()>
       (now.sa_flags & SA_SIGINFO) || (now.sa_handler != SIG_DFL && now.sa_handler != SIG_IGN);
   if (handler) {
     ensure_relay_thread(r);
+    const std::uint64_t run = ++r.runs;  // run() is for one thread at a time (busy)
     {
       std::lock_guard lock(r.m);
       r.current = std::move(on_interrupt);
+      r.current_run = run;
     }
+    r.running = run;
     r.replaced = now;
     struct sigaction ours {};
     ours.sa_sigaction = relay_sigint;

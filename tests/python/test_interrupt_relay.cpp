@@ -157,4 +157,36 @@ TEST(InterruptRelay, ManyJobsInARowEachRelayTheirOwnSignal) {
   }
 }
 
+// A relay thread that wakes late (here: still inside the previous job's on_interrupt) does not
+// stop the job under way for a signal that reached the job before it. Before run numbers, the
+// late wake-up stopped the next call (a Python loop that catches KeyboardInterrupt and calls
+// again saw that call cancelled with no Ctrl-C during it).
+TEST(InterruptRelay, ALateRelayDoesNotStopTheNextJob) {
+  const SigintHandler handler(count_sigint);
+  // Job 0's on_interrupt holds the relay thread for a while.
+  auto held = std::make_shared<std::atomic<bool>>(false);
+  InterruptRelay::run(
+      [&] {
+        kill(getpid(), SIGINT);
+        const auto end = std::chrono::steady_clock::now() + 5000ms;
+        while (!held->load() && std::chrono::steady_clock::now() < end)
+          std::this_thread::sleep_for(1ms);
+        ASSERT_TRUE(held->load());
+      },
+      [held] {
+        held->store(true);
+        std::this_thread::sleep_for(300ms);
+      });
+  // Job A gets a Ctrl-C and ends before the relay thread is free to look at it.
+  const auto a = std::make_shared<Relayed>();
+  InterruptRelay::run([] { kill(getpid(), SIGINT); }, count_and_stop(a));
+  // Job B runs past the moment the relay thread wakes: nothing may stop it.
+  const auto b = std::make_shared<Relayed>();
+  bool b_stopped = true;
+  InterruptRelay::run([&] { b_stopped = wait_for(b->stop, 700ms); }, count_and_stop(b));
+  EXPECT_FALSE(b_stopped);
+  EXPECT_EQ(b->count.load(), 0);
+  EXPECT_EQ(a->count.load(), 0);  // A had ended: its signal reached only Python's handler
+}
+
 }  // namespace

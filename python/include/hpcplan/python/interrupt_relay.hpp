@@ -24,8 +24,10 @@ namespace hpcplan::python {
 
 class InterruptRelay {
  public:
-  // Runs `job` with SIGINT relayed to `on_interrupt` (once per signal). An exception from the
-  // job propagates once the handler is restored.
+  // Runs `job` with SIGINT relayed to `on_interrupt`: called at least once for a job that a
+  // SIGINT reached (signals close together may be relayed once), and never for a signal that
+  // reached an earlier job, however late the relay thread wakes. An exception from the job
+  // propagates once the handler is restored.
   static void run(const std::function<void()>& job, std::function<void()> on_interrupt);
 };
 
