@@ -78,6 +78,7 @@ class Fluid:
     size = property(lambda self: self._native.size, doc="particles, walls included")
     fluid_count = property(lambda self: self._native.fluid_count)
     backend = property(lambda self: self._native.backend)
+    threads = property(lambda self: self._native.threads, doc="OpenMP threads a step runs")
     options = property(lambda self: self._native.options,
                        doc="the problem: preset, scenario, particles, seed")
     restarted_at_frame = property(lambda self: self._native.restarted_at_frame)

@@ -2,6 +2,7 @@
 
 #include <Python.h>
 #include <omp.h>
+#include <pthread.h>
 #include <pythread.h>
 #include <unistd.h>
 
@@ -21,6 +22,28 @@ OmpThreads::OmpThreads(int threads) : before_(omp_get_max_threads()), set_(threa
 
 OmpThreads::~OmpThreads() {
   if (set_) omp_set_num_threads(before_);
+}
+
+namespace {
+
+// Whether this process's engine has run a call (and so, perhaps, started OpenMP's threads),
+// and whether this process is a child forked after its parent's engine had.
+std::atomic<bool> engine_ran{false};
+std::atomic<bool> forked_after_engine{false};
+
+extern "C" void after_fork_in_child() {
+  if (engine_ran.load()) forked_after_engine = true;
+}
+
+}  // namespace
+
+int call_threads(int requested) {
+  return forked_after_engine.load() ? 1 : requested;
+}
+
+void install_fork_guard() {
+  static const int installed = pthread_atfork(nullptr, nullptr, after_fork_in_child);
+  (void)installed;
 }
 
 void parse_options(CLI::App& command, const std::vector<std::string>& tokens) {
@@ -106,6 +129,7 @@ struct CallStop {
 
 void run_released(const std::function<void(const cli::RunControl&)>& work, const StopSource* stop,
                   OnCtrlC on_ctrl_c) {
+  engine_ran = true;
   auto state = std::make_shared<CallStop>();
   cli::RunControl control;
   control.cancel = state->cancel.get_token();

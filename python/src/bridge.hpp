@@ -108,6 +108,16 @@ class OmpThreads {
   bool set_;
 };
 
+// A call's OpenMP threads in this process: `requested` (0: the default), or 1 in a process
+// forked after this one's engine had run. GNU OpenMP's thread pool does not survive fork(): the
+// child's first parallel region with more than one thread waited forever for the parent's
+// threads (multiprocessing's default start method on Linux is fork). A team of one needs no
+// pool, so such a child runs every call on one thread, and says so in its results' threads.
+int call_threads(int requested);
+
+// Registers the fork handler behind call_threads (once, at import).
+void install_fork_guard();
+
 // What a call does on a Ctrl-C: end at its next safe boundary with its checkpoint
 // (interrupt: the dense lattice search with checkpoint=, a fluid step, a simulation), or
 // stop at once (cancel: everything else, whose answer is then status cancelled).

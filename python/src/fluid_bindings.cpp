@@ -50,7 +50,12 @@ class Fluid {
 
   cli::FluidSession& session() { return *session_; }
   const cli::FluidSession& session() const { return *session_; }
-  int threads() const { return threads_; }
+  // The OpenMP threads a step runs: threads= as given, else OpenMP's default (1 in a child
+  // forked after the engine ran: call_threads).
+  int threads() const {
+    const int t = call_threads(threads_);
+    return t > 0 ? t : omp_get_max_threads();
+  }
   const std::string& backend() const { return backend_; }
 
   py::dict step(std::uint64_t frames, const StopSource* stop) {
@@ -60,7 +65,7 @@ class Fluid {
     // KeyboardInterrupt) still counts the frames it made.
     const sph::RunReport r = call_released<sph::RunReport>(
         [&](const cli::RunControl& control) {
-          const OmpThreads threads(threads_);
+          const OmpThreads threads(call_threads(threads_));
           sph::RunReport done =
               session_->advance(frames, {}, [&] { return control.should_stop(); });
           add_to_total(done);
@@ -93,7 +98,8 @@ class Fluid {
   // hpcplan sph --json's object for the frames run so far.
   py::object report() const {
     const Use use(*this);
-    io::SphRun info = session_->describe(threads_ > 0 ? threads_ : omp_get_max_threads());
+    const int threads = call_threads(threads_);
+    io::SphRun info = session_->describe(threads > 0 ? threads : omp_get_max_threads());
     info.report = total_;
     info.summary = sph::summarise(session_->fluid().full_state());
     double seconds = 0.0;
@@ -113,16 +119,29 @@ class Fluid {
         series->resume(session_->restarted_at_frame(), session_->fluid().state().params.frame_dt);
       it = vtk_.emplace(key, Series{std::move(series), {}}).first;
     }
-    // A frame already in the series is the same state: it is not written twice.
-    if (!it->second.frames.insert(session_->frame()).second) return;
-    it->second.series->write(session_->frame(), session_->fluid().full_state());
+    // A frame already in the series is the same state: it is not written twice (a failed write,
+    // a full disk say, is not counted as written).
+    if (it->second.frames.count(session_->frame()) != 0) return;
+    {
+      // The file's write with the GIL released (Use keeps other threads off the fluid): a
+      // large fluid's frame is megabytes.
+      const py::gil_scoped_release release;
+      it->second.series->write(session_->frame(), session_->fluid().full_state());
+    }
+    it->second.frames.insert(session_->frame());
   }
 
   void checkpoint(const std::string& path) {
     const Use use(*this);
     if (path.empty()) throw InputError("--checkpoint: an empty path");
     require_writable_destination(path, "--checkpoint");
-    if (!session_->write_checkpoint(path))
+    bool written = false;
+    {
+      // Encoding and the flush to disk with the GIL released (95 ms for 35k particles).
+      const py::gil_scoped_release release;
+      written = session_->write_checkpoint(path);
+    }
+    if (!written)
       throw RunError("the fluid's state is unsound (" +
                      sph::first_problem(session_->fluid().full_state()) +
                      "): no checkpoint written to '" + path + "'");
@@ -166,7 +185,7 @@ std::unique_ptr<Fluid> make(const std::vector<std::string>& tokens) {
   cli::require_memory(sph::estimated_bytes(o), o.particles, a.memory_mb);
   auto session = call_released<std::unique_ptr<cli::FluidSession>>(
       [&](const cli::RunControl&) {
-        const OmpThreads threads(a.threads);
+        const OmpThreads threads(call_threads(a.threads));
         return std::make_unique<cli::FluidSession>(o, a.backend);
       },
       nullptr);
@@ -182,7 +201,7 @@ std::unique_ptr<Fluid> restart(const std::string& path, const std::vector<std::s
   sph::check_backend_name(a.backend);
   auto session = call_released<std::unique_ptr<cli::FluidSession>>(
       [&](const cli::RunControl&) {
-        const OmpThreads threads(a.threads);
+        const OmpThreads threads(call_threads(a.threads));
         sph::FluidCheckpoint checkpoint = sph::read_checkpoint(path);
         cli::require_memory(sph::estimated_bytes(checkpoint.options), checkpoint.options.particles,
                             a.memory_mb);

@@ -107,6 +107,7 @@ py::tuple solve(const std::vector<std::string>& tokens, const StopSource* stop,
         x.density != y.density)
       throw InputError("the solve's field options differ from its Field's");
   }
+  a->options.threads = call_threads(a->options.threads);
   // With a checkpoint, Ctrl-C ends the dense search at its next level or bucket with the
   // checkpoint written (then KeyboardInterrupt); without one it cancels the search.
   const OnCtrlC on_ctrl_c = a->options.checkpoint.empty() ? OnCtrlC::cancel : OnCtrlC::interrupt;

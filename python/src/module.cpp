@@ -54,6 +54,7 @@ PYBIND11_MODULE(_hpcplan, m) {
             hpcplan::to_json(hpcplan::plan::PlannerRegistry::get(), setting));
       },
       py::arg("world") = "");
+  hpcplan::python::install_fork_guard();
   hpcplan::python::bind_grid(m);
   hpcplan::python::bind_worlds(m);
   hpcplan::python::bind_fluid(m);

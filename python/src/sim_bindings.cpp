@@ -37,6 +37,7 @@ py::tuple run(const std::vector<std::string>& tokens, const StopSource* stop) {
   CLI::App command("hpcplan sim");
   cli::add_sim_options(&command, a);
   parse_options(command, tokens);
+  a.threads = call_threads(a.threads);
   const io::SimInvocation inv = call_released<io::SimInvocation>(
       [&](const cli::RunControl& control) {
         const OmpThreads threads(a.threads);  // run_sim sets --threads on this thread: put back
