@@ -39,8 +39,13 @@ def _default(option):
     return text
 
 
+def _is_bool(value):
+    # NumPy's bool is not a bool, but operator.index() reads it as 0 or 1.
+    return isinstance(value, bool) or type(value).__name__ == "bool_"
+
+
 def _whole(name, value):
-    if isinstance(value, bool):
+    if _is_bool(value):
         raise TypeError(f"{name} must be an integer, not bool")
     try:
         return operator.index(value)
@@ -49,7 +54,7 @@ def _whole(name, value):
 
 
 def _real(name, value):
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+    if _is_bool(value) or not isinstance(value, numbers.Real):
         raise TypeError(f"{name} must be a real number, not {type(value).__name__}")
     # As the number would be typed: -1 as "-1", 0.1 as "0.1" (the shortest text that reads back
     # to the same double), so that a refusal quotes what was given.
@@ -123,8 +128,11 @@ class Options:
             elif kind == "float":
                 out.append(f"{flag}={_real(name, value)}")
             elif kind in ("int_list", "float_list") or name in self.sequences:
-                if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
-                    raise TypeError(f"{name} must be a sequence of numbers")
+                # A set or a dict has no order: its numbers would go in whatever order it holds.
+                if isinstance(value, (str, bytes, set, frozenset, dict)) or \
+                        not hasattr(value, "__iter__"):
+                    raise TypeError(f"{name} must be a sequence of numbers, not "
+                                    f"{type(value).__name__}")
                 cast = (lambda v: str(_whole(name, v))) if kind != "float_list" else \
                     (lambda v: _real(name, v))
                 out.append(f"{flag}=" + ",".join(cast(v) for v in value))

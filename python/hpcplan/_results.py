@@ -47,8 +47,10 @@ class PlanResult:
 
     status : str     solved, no_path, budget_exceeded, timeout or cancelled
     length : float   the returned path's length (after shortcutting, when asked); raw_length:
-                     as the planner returned it
-    path : ndarray   (waypoints, dims) float64, exactly start to goal, every segment re-checked
+                     as the planner returned it; both None unless solved (as GridResult.cost:
+                     min() over results cannot pick a failure's 0.0)
+    path : ndarray   (waypoints, dims) float64, exactly start to goal, every segment re-checked;
+                     (0, dims) unless solved
     counters : dict  expanded, tree_size, collision_checks (and samples where counted)
     timings : dict   time_ms (planning and shortcutting), plan_ms (planning alone),
                      first_solution_ms (anytime planners)
@@ -62,14 +64,17 @@ class PlanResult:
 
     status = property(lambda self: self.report["status"])
     algo = property(lambda self: self.report["algo"])
-    length = property(lambda self: self.report["length"])
-    raw_length = property(lambda self: self.report["raw_length"])
+    length = property(lambda self: self._solved_value("length"))
+    raw_length = property(lambda self: self._solved_value("raw_length"))
     counters = property(lambda self: {k: self.report[k] for k in
                                       ("expanded", "tree_size", "collision_checks", "samples")
                                       if k in self.report})
     timings = property(lambda self: {k: self.report[k] for k in
                                      ("time_ms", "plan_ms", "first_solution_ms")
                                      if k in self.report})
+
+    def _solved_value(self, key):
+        return self.report[key] if self.report["status"] == "solved" else None
 
     def __repr__(self):
         return (f"PlanResult(status={self.status!r}, algo={self.algo!r}, "

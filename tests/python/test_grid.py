@@ -177,4 +177,8 @@ def test_wrong_types_are_type_errors():
         hpcplan.grid.solve(dims=2, path=1)
     with pytest.raises(TypeError, match="start must be a sequence"):
         hpcplan.grid.solve(dims=2, start="0,0")
+    with pytest.raises(TypeError, match="start must be a sequence of numbers, not set"):
+        hpcplan.grid.solve(dims=2, start={0, 1})  # no order: which axis is 0?
+    with pytest.raises(TypeError, match="dims must be an integer, not bool"):
+        hpcplan.grid.solve(dims=np.True_)  # as dims=True
     assert hpcplan.grid.solve(dims=np.int64(2), extent=np.uint16(20)).status == "solved"

@@ -1,6 +1,8 @@
 """The GIL is released during long calls, a StopSource cancels them from another thread, and
 Ctrl-C stops them through the engine's stop token."""
+import json
 import os
+import signal
 import subprocess
 import sys
 import textwrap
@@ -195,3 +197,61 @@ def test_calls_from_other_threads_run_there():
     t.start()
     t.join()
     assert out["r"].status == "solved"
+
+
+# multiprocessing's default start method on Linux is fork. GNU OpenMP's threads do not survive
+# it: a child whose parent had run the engine's parallel loops waited forever in its first one.
+# Such a child runs every call on one thread instead, and says so.
+FORKED = textwrap.dedent("""
+    import multiprocessing as mp, sys
+    import hpcplan
+    def child(seed):
+        r = hpcplan.grid.solve(dims=3, extent=30, algo="bfs", engine="dense", seed=seed)
+        f = hpcplan.sph.Fluid(preset="seed", particles=300, threads=2)
+        f.step(frames=2)
+        return r.status, r.hops, r.report["dense"]["threads"], f.threads, f.frame
+    parent = [hpcplan.grid.solve(dims=3, extent=30, algo="bfs", engine="dense", seed=s)
+              for s in (1, 2)]
+    hpcplan.sph.Fluid(preset="seed", particles=300, threads=2).step(frames=2)
+    with mp.get_context("fork").Pool(2) as pool:
+        got = pool.map(child, [1, 2])
+    assert [g[:2] for g in got] == [(p.status, p.hops) for p in parent], (got, parent)
+    assert all(g[2:] == (1, 1, 2) for g in got), got
+    print("ok", got)
+""")
+
+
+def test_a_child_forked_after_the_engine_ran_runs_on_one_thread():
+    # In a session of its own, so that a hang kills the pool's children too, not just their
+    # parent (orphans would hold the machine's cores for the rest of the suite).
+    p = subprocess.Popen([sys.executable, "-c", FORKED], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        out, err = p.communicate(timeout=120)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        out, err = p.communicate()
+        pytest.fail("the forked children hung: " + out + err)
+    assert p.returncode == 0 and out.startswith("ok"), out + err
+
+
+def test_threads_writing_one_output_each_leave_a_whole_file(tmp_path):
+    out = tmp_path / "same.json"
+    errors, seen = [], []
+
+    def write(seed):
+        for _ in range(10):
+            try:
+                hpcplan.grid.solve(dims=3, extent=30, seed=seed, path=True, output=str(out))
+                seen.append(json.loads(out.read_text())["seed"])
+            except Exception as e:  # a failed rename or a torn file
+                errors.append(repr(e))
+
+    threads = [threading.Thread(target=write, args=(s,)) for s in (1, 2, 3, 4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors, errors[:3]
+    assert len(seen) == 40 and set(seen) <= {1, 2, 3, 4}
+    assert [p.name for p in tmp_path.iterdir()] == ["same.json"]  # no temporary left

@@ -142,4 +142,18 @@ def test_no_path_is_an_answer(tmp_path):
     r = world.plan(algo="astar", resolution=0.5)
     cli = run_cli("map3d", "--map", walled, "--resolution", "0.5", "--json")
     assert r.status == "no_path" and r.path.shape == (0, 3)
+    assert r.length is None and r.raw_length is None  # not 0.0, which min() would pick
     assert cli.returncode == 0 and '"status":"no_path"' in cli.stdout
+
+
+def test_an_underflowing_coordinate_is_read_as_the_map_parser_reads_it(tmp_path):
+    # 5e-324 is a subnormal double and 1e-400 rounds to 0: both finite, and refused before as
+    # "not a finite number" (the CLI's point option read them with stod, which throws on them).
+    box = tmp_path / "box.txt"
+    box.write_text("boundary 0 0 0 10 10 10\nstart 1 1 1\ngoal 9 9 9\n")
+    world = hpcplan.map3d.load(box)
+    for x in (5e-324, 1e-400):
+        r = world.plan((x, 1, 1), (9, 9, 9), algo="astar", resolution=0.5)
+        assert r.status == "solved" and r.path[0][0] == x, (x, r)
+    cli = run_cli("map3d", "--map", box, "--start", "1e-400,1,1", "--json")
+    assert cli.returncode == 0 and '"status":"solved"' in cli.stdout, cli.stderr

@@ -3,6 +3,7 @@
 // hpcplan sphere2d use, in a header of its own so that the option-values fuzz target
 // (tests/fuzz/fuzz_option_values.cpp) runs the same code.
 #include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -26,13 +27,13 @@ env::Vec<D> parse_point(const std::string& text, const char* option) {
   }
   env::Vec<D> p{};
   for (std::size_t k = 0; k < items.size() && k < D; ++k) {
-    try {
-      std::size_t used = 0;
-      p[k] = std::stod(items[k], &used);
-      if (used != items[k].size() || !std::isfinite(p[k])) throw std::invalid_argument(items[k]);
-    } catch (const std::exception&) {
+    // strtod, not stod: stod refused an underflow (5e-324, a subnormal, read as it is; 1e-400,
+    // read as 0) as out of range, while the map files' parser reads both.
+    const char* begin = items[k].c_str();
+    char* end = nullptr;
+    p[k] = std::strtod(begin, &end);
+    if (end == begin || *end != '\0' || !std::isfinite(p[k]))
       throw InputError(std::string(option) + ": '" + items[k] + "' is not a finite number");
-    }
   }
   if (items.size() != D)
     throw InputError(std::string(option) + " needs " + std::to_string(D) +
