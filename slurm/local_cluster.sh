@@ -36,8 +36,10 @@ start() {
   local cpus mem_mb port
   cpus=$(nproc)
   mem_mb=$(awk '/MemTotal/ {printf "%d", $2 / 1024 * 0.9}' /proc/meminfo)
-  # Ports from the directory's name hash, so two clusters in two directories do not collide.
-  port=$((20000 + $(printf '%s' "$dir" | cksum | cut -d' ' -f1) % 20000))
+  # Ports from the directory's name hash, so two clusters in two directories do not collide;
+  # below Linux's ephemeral range (32768 up), so no outgoing connection of another program
+  # (an mpirun beside the test cluster) can hold one first.
+  port=$((20000 + $(printf '%s' "$dir" | cksum | cut -d' ' -f1) % 6000 * 2))
   cat > "$conf" <<CONF
 ClusterName=hpcplan
 SlurmctldHost=$host(127.0.0.1)
