@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cstdint>
 #include <mutex>
+#include <new>
 #include <thread>
 
 namespace hpcplan::python {
@@ -33,12 +34,37 @@ struct Relay {
   static_assert(std::atomic<std::uint64_t>::is_always_lock_free);  // read in the handler
   pid_t owner = 0;                // the process whose relay thread exists
   std::atomic<bool> busy{false};  // a run() is under way
+  bool installed = false;         // the relay's handler is SIGINT's (during a run)
   struct sigaction replaced {};   // SIGINT's action before the relay (read by the handler)
 };
 
+// In a child forked while a run() was under way on another thread (os.fork() from a second
+// Python thread): that run does not go on in the child, and its relay thread is not there. The
+// child starts clean: SIGINT's handler given back, the run forgotten (busy would otherwise keep
+// every later run from relaying), the mutex rebuilt (a thread that is not in the child may
+// have held it), and no relay thread, so the child's first run() starts one.
+extern "C" void relay_after_fork_in_child();
+
 Relay& relay() {
-  static Relay* r = new Relay;
+  static Relay* r = [] {
+    auto* made = new Relay;
+    pthread_atfork(nullptr, nullptr, relay_after_fork_in_child);
+    return made;
+  }();
   return *r;
+}
+
+extern "C" void relay_after_fork_in_child() {
+  Relay& r = relay();
+  if (r.installed) sigaction(SIGINT, &r.replaced, nullptr);
+  r.installed = false;
+  new (&r.m) std::mutex;
+  r.current = nullptr;
+  r.current_run = 0;
+  r.running = 0;
+  r.signalled = 0;
+  r.busy = false;
+  r.owner = 0;
 }
 
 void relay_loop(Relay* r) {
@@ -69,7 +95,12 @@ void ensure_relay_thread(Relay& r) {
   sigset_t all, previous;
   sigfillset(&all);
   pthread_sigmask(SIG_BLOCK, &all, &previous);
-  std::thread(relay_loop, &r).detach();
+  try {
+    std::thread(relay_loop, &r).detach();
+  } catch (...) {  // no thread (a process at its limit): the caller's signals as they were
+    pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+    throw;
+  }
   pthread_sigmask(SIG_SETMASK, &previous, nullptr);
   while (sem_wait(&r.started) != 0 && errno == EINTR) {
   }
@@ -101,7 +132,10 @@ void InterruptRelay::run(const std::function<void()>& job, std::function<void()>
     Relay& r;
     bool installed = false;
     ~Done() {
-      if (installed) sigaction(SIGINT, &r.replaced, nullptr);
+      if (installed) {
+        sigaction(SIGINT, &r.replaced, nullptr);
+        r.installed = false;
+      }
       r.running = 0;
       {
         std::lock_guard lock(r.m);
@@ -131,6 +165,7 @@ void InterruptRelay::run(const std::function<void()>& job, std::function<void()>
     sigemptyset(&ours.sa_mask);
     sigaction(SIGINT, &ours, nullptr);
     done.installed = true;
+    r.installed = true;
   }
   job();
 }

@@ -4,6 +4,7 @@
 // or ignored SIGINT is left alone. Also run under ThreadSanitizer (threads_python).
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -15,6 +16,14 @@
 #include <thread>
 
 #include "hpcplan/python/interrupt_relay.hpp"
+
+#if defined(__SANITIZE_THREAD__)
+#define HPCPLAN_UNDER_TSAN 1
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define HPCPLAN_UNDER_TSAN 1
+#endif
+#endif
 
 namespace {
 
@@ -187,6 +196,39 @@ TEST(InterruptRelay, ALateRelayDoesNotStopTheNextJob) {
   EXPECT_FALSE(b_stopped);
   EXPECT_EQ(b->count.load(), 0);
   EXPECT_EQ(a->count.load(), 0);  // A had ended: its signal reached only Python's handler
+}
+
+// os.fork() from a second Python thread while the main thread's call runs: the child has no
+// such call and no relay thread. Its own runs must still relay; before, the parent's run stayed
+// "under way" in the child and no later run there relayed a signal.
+TEST(InterruptRelay, AChildForkedDuringARunRelaysItsOwnRuns) {
+#ifdef HPCPLAN_UNDER_TSAN
+  GTEST_SKIP() << "ThreadSanitizer ends a child of a threaded process that starts a thread";
+#endif
+  const SigintHandler handler(count_sigint);
+  int status = -1;
+  InterruptRelay::run(
+      [&] {
+        std::thread([&] {
+          const pid_t child = fork();
+          if (child == 0) {
+            const auto own = std::make_shared<Relayed>();
+            bool stopped = false;
+            InterruptRelay::run(
+                [&] {
+                  kill(getpid(), SIGINT);
+                  stopped = wait_for(own->stop, 5000ms);
+                },
+                count_and_stop(own));
+            _exit(stopped && current_handler() == &count_sigint ? 0 : 1);
+          }
+          waitpid(child, &status, 0);
+        }).join();
+      },
+      [] {});
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(current_handler(), &count_sigint);
 }
 
 }  // namespace

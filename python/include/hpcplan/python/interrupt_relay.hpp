@@ -17,7 +17,8 @@
 // Threads: run() is for one thread at a time (Python's main thread); a run() inside a run()
 // runs its job without a relay of its own. on_interrupt runs on the relay thread, possibly
 // after run() has returned (a signal that arrived at the last moment): it must own what it
-// uses. A process forked while the relay thread exists starts a new one at its first run().
+// uses. A forked child starts clean, even when forked during a run() on another thread: no run
+// under way, SIGINT's handler given back, and a relay thread of its own at its first run().
 #include <functional>
 
 namespace hpcplan::python {
