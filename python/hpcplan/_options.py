@@ -41,7 +41,7 @@ def _default(option):
 
 def _is_bool(value):
     # NumPy's bool is not a bool, but operator.index() reads it as 0 or 1.
-    return isinstance(value, bool) or type(value).__name__ == "bool_"
+    return isinstance(value, (bool, np.bool_))
 
 
 def _whole(name, value):

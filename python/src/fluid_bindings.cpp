@@ -135,6 +135,9 @@ class Fluid {
     const Use use(*this);
     if (path.empty()) throw InputError("--checkpoint: an empty path");
     require_writable_destination(path, "--checkpoint");
+    // The soundness check before the write is an OpenMP loop: the fluid's threads (one in a
+    // forked child: call_threads).
+    const OmpThreads threads(call_threads(threads_));
     bool written = false;
     {
       // Encoding and the flush to disk with the GIL released (95 ms for 35k particles).

@@ -32,7 +32,7 @@ env::Vec<D> parse_point(const std::string& text, const char* option) {
     const char* begin = items[k].c_str();
     char* end = nullptr;
     p[k] = std::strtod(begin, &end);
-    if (end == begin || *end != '\0' || !std::isfinite(p[k]))
+    if (end == begin || end != begin + items[k].size() || !std::isfinite(p[k]))
       throw InputError(std::string(option) + ": '" + items[k] + "' is not a finite number");
   }
   if (items.size() != D)
