@@ -15,7 +15,7 @@ template=$here/$name.sbatch
 [[ -f $template ]] || die "no template slurm/$name.sbatch"
 command -v sbatch >/dev/null || die "sbatch not found: not on a SLURM login node (or apt-get install slurm-wlm)"
 # A SLURM_CONF that names no file: SLURM's tools retry reading it for a minute before failing.
-[[ -z ${SLURM_CONF:-} || -r $SLURM_CONF ]] || die "SLURM_CONF=$SLURM_CONF is not a readable file"
+[[ -z ${SLURM_CONF:-} || ( -f $SLURM_CONF && -r $SLURM_CONF ) ]] || die "SLURM_CONF=$SLURM_CONF is not a readable file"
 timeout 30 scontrol ping >/dev/null 2>&1 || die "no SLURM controller answers (scontrol ping); start one with: eval \"\$(bash slurm/local_cluster.sh start)\""
 bins=${HPCPLAN_BIN_DIR:-$root/build/bin}
 [[ -x $bins/hpcplan ]] || die "$bins/hpcplan not found: build first (bash scripts/build.sh) or set HPCPLAN_BIN_DIR"

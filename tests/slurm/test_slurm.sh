@@ -23,13 +23,14 @@ finished() { [[ $1 =~ ^(COMPLETED|FAILED|CANCELLED|TIMEOUT|NODE_FAIL|OUT_OF_MEMO
 submit() {  # submit NAME SCRIPT [sbatch args]: waits; prints the job id; fails unless COMPLETED
   # Polled every 0.2 s rather than `sbatch --wait`, which looks at 2 s and then at 10 s: each of
   # these jobs ends within seconds, and the waits were a third of this test's four minutes.
-  local name=$1 script=$2 jid states s t
+  local name=$1 script=$2 jid states s deadline
   shift 2
   jid=$(timeout 60 sbatch --parsable --chdir "$work" --output "$work/$name-%j.out" "$@" \
     "$root/slurm/$script") || return 1
   jid=${jid%%;*}
   echo "$jid"
-  for ((t = 0; t < 1500; t++)); do  # 300 s
+  deadline=$((SECONDS + 300))
+  while ((SECONDS < deadline)); do
     states=$(job_states "$jid")
     if [[ -n $states ]]; then
       local done=1 ok=0
