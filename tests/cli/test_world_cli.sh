@@ -130,7 +130,7 @@ expect_bad "larger than 64 MiB" sphere2d --map /dev/zero --start 1,1 --goal 2,2
 # 4.9 + (0.1 - 4.9) in doubles): every planner that tightens.
 printf 'boundary 0 0 0 4.3 20 5\nblock 1.0 0 0 1.1 19 5\nblock 2.1 1 0 2.2 20 5\n' >"$tmp/edge.txt"
 for algo in visgraph astar birrt thetastar; do
-  "$BIN" map3d --map "$tmp/edge.txt" --start 0.5,1.0,4.9 --goal 3.0,1.0,0.1 --algo "$algo" \
+  "$BIN" map3d --map "$tmp/edge.txt" --start 0.5,1.0,4.9 --goal 3.0,1.0,0.1 --algo "$algo" --time 60 \
     --shortcut --json >"$tmp/o" 2>"$tmp/e" || fail "edge map $algo --shortcut: $(cat "$tmp/e")"
   "$PY" -c "import json; j=json.load(open('$tmp/o')); assert j['status']=='solved' and j['path'][-1]==[3.0,1.0,0.1], j['path'][-1]" ||
     fail "edge map $algo: bad end"
