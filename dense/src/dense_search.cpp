@@ -164,7 +164,17 @@ std::uint64_t planned_bytes(const GogField& field, const Query& q, int ranks) {
   return bytes;
 }
 
+int compiled_dims() {
+  return kCompiledDims;
+}
+
 Result search(const GogField& field, const Query& asked, SlabTransport& tr) {
+  // A build configured with -DHPCPLAN_DENSE_DIMS=N < 16: every rank runs the same build, so
+  // all refuse together.
+  if (field.dims() > kCompiledDims)
+    throw InputError("this build compiles the dense engine for 1 to " +
+                     std::to_string(kCompiledDims) + " dimensions (HPCPLAN_DENSE_DIMS), not " +
+                     std::to_string(field.dims()) + "; use --engine sparse");
   // Every rank must deal the same blocks to the same number of threads and refuse or accept
   // together, while each knows only its own limits: all take the smallest thread count any
   // rank can start (its OpenMP thread limit; one thread when called inside another parallel

@@ -115,7 +115,8 @@ bool uses_dense_engine(const GogField& field, const GridSearchOptions& options,
   if (options.engine == GridEngine::sparse) return false;
   if (options.algorithm != GridAlgorithm::bfs && options.algorithm != GridAlgorithm::dijkstra)
     return false;
-  return options.engine == GridEngine::dense || dense_fits(field, options, report, ranks);
+  if (options.engine == GridEngine::dense) return true;  // refused in one line if not compiled
+  return field.dims() <= dense::compiled_dims() && dense_fits(field, options, report, ranks);
 }
 
 void run_dense(const GogField& field, const GridProblem& problem, const GridSearchOptions& options,

@@ -10,7 +10,9 @@
 #include <set>
 #include <thread>
 
+#include "hpcplan/core/error.hpp"
 #include "hpcplan/dense/dense_search.hpp"
+#include "hpcplan/plan/grid_planner.hpp"
 #include "support/cancel_handshake.hpp"
 
 namespace {
@@ -134,6 +136,36 @@ TEST(DenseThreads, TheStopConditionRunsOnTheCallingThreadOnly) {
     EXPECT_GT(calls, 0);
     EXPECT_EQ(callers, std::set<std::thread::id>{std::this_thread::get_id()});
   }
+}
+
+// A build compiled for fewer dimensions (-DHPCPLAN_DENSE_DIMS; the ThreadSanitizer tree has 4)
+// refuses the next one in one line, and the planner's automatic choice runs it on the sparse
+// engine instead. In a full build (16) there is no such dimension: skipped.
+TEST(DenseBuild, ADimensionNotCompiledIsRefusedAndAutoPicksTheSparseEngine) {
+  const int compiled = dense::compiled_dims();
+  if (compiled >= 16) GTEST_SKIP() << "every dimension is compiled in this build";
+  GridProblem p;
+  p.dims = compiled + 1;
+  p.extent = 5;
+  GridSearchOptions o;
+  o.algorithm = GridAlgorithm::bfs;
+  o.engine = GridEngine::dense;
+  try {
+    solve_grid(p, o);
+    FAIL() << "the dense engine ran " << p.dims << "D in a build compiled for " << compiled;
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "this build compiles the dense engine for 1 to " +
+                                         std::to_string(compiled) +
+                                         " dimensions (HPCPLAN_DENSE_DIMS), not " +
+                                         std::to_string(p.dims) + "; use --engine sparse");
+  }
+  o.engine = GridEngine::sparse;
+  const GridReport sparse = solve_grid(p, o);
+  o.engine = GridEngine::automatic;
+  const GridReport automatic = solve_grid(p, o);
+  EXPECT_EQ(automatic.options.engine, "sparse");
+  EXPECT_EQ(automatic.result.status, sparse.result.status);
+  EXPECT_EQ(automatic.result.hops, sparse.result.hops);
 }
 
 }  // namespace

@@ -92,6 +92,10 @@ struct Result : hpcplan::Result<std::vector<int>> {
 // more tiles than TileLayout::kMaxTiles.
 std::uint64_t planned_bytes(const GogField& field, const Query& query, int ranks);
 
+// The largest lattice dimension this build compiled the engine for: 16 unless it was configured
+// with -DHPCPLAN_DENSE_DIMS=N (search() refuses a higher one; --engine auto picks sparse there).
+int compiled_dims();
+
 // Runs the query on this rank's slab; collective over the transport's ranks. InputError if the
 // planned bytes exceed the budget (one line naming both), before anything large is allocated,
 // or if a rank's restart checkpoint is refused (every rank throws it, with that rank's
