@@ -114,7 +114,10 @@ class Lattice {
     pq.push({0.0, index(s)});
     const std::int64_t target = index(g);
     while (!pq.empty()) {
-      auto [d, u] = pq.top();
+      // Plain variables, not a structured binding: the lambda below captures d, which
+      // clang before 16 refuses for a binding.
+      const double d = pq.top().first;
+      const std::int64_t u = pq.top().second;
       pq.pop();
       if (d > dist[u]) continue;
       if (u == target) return {true, d, -1};
