@@ -168,13 +168,17 @@ int compiled_dims() {
   return kCompiledDims;
 }
 
+void require_compiled(int dims) {
+  if (dims > kCompiledDims)
+    throw InputError("this build compiles the dense engine for 1 to " +
+                     std::to_string(kCompiledDims) + " dimensions (HPCPLAN_DENSE_DIMS), not " +
+                     std::to_string(dims) + "; use --engine sparse");
+}
+
 Result search(const GogField& field, const Query& asked, SlabTransport& tr) {
   // A build configured with -DHPCPLAN_DENSE_DIMS=N < 16: every rank runs the same build, so
   // all refuse together.
-  if (field.dims() > kCompiledDims)
-    throw InputError("this build compiles the dense engine for 1 to " +
-                     std::to_string(kCompiledDims) + " dimensions (HPCPLAN_DENSE_DIMS), not " +
-                     std::to_string(field.dims()) + "; use --engine sparse");
+  require_compiled(field.dims());
   // Every rank must deal the same blocks to the same number of threads and refuse or accept
   // together, while each knows only its own limits: all take the smallest thread count any
   // rank can start (its OpenMP thread limit; one thread when called inside another parallel
@@ -229,7 +233,7 @@ Result search(const GogField& field, const Query& asked, SlabTransport& tr) {
     HPCPLAN_DENSE_DIMS(16)
 #undef HPCPLAN_DENSE_DIMS
   }
-  throw std::logic_error("dense::search: dims out of range (or not compiled in this build)");
+  throw std::logic_error("dense::search: dims out of range");
 }
 
 }  // namespace hpcplan::dense

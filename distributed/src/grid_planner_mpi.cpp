@@ -161,7 +161,7 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
     agreed.threads = static_cast<int>(v[1]);
   }
   const bool dense = uses_dense_engine(field, agreed, report, comm.size());
-  require_dense_for_checkpoints(options, dense);
+  require_dense_for_checkpoints(options, problem.dims, dense);
 
   if (dist.compare_serial) {
     if (comm.rank() == 0) {

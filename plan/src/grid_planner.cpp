@@ -35,7 +35,7 @@ GridReport solve_grid(const GogField& field, const GridProblem& problem,
     Stopwatch setup;
     GridReport report = prepare_grid_report(problem, options, field, 1);
     const bool dense = uses_dense_engine(field, options, report, 1);
-    require_dense_for_checkpoints(options, dense);
+    require_dense_for_checkpoints(options, field.dims(), dense);
     if (dense) {
       report.result.setup_ms = setup.milliseconds();
       dense::LocalTransport local;

@@ -6,6 +6,7 @@
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/format.hpp"
+#include "hpcplan/dense/dense_search.hpp"
 #include "hpcplan/graph/packed_key.hpp"
 #include "hpcplan/plan/planner_registry.hpp"
 
@@ -133,6 +134,9 @@ void validate(const GridProblem& p, const GridSearchOptions& o) {
     throw InputError(
         "--engine dense runs --algo bfs and dijkstra (A* and weighted A* run on the "
         "sparse engine)");
+  // Here, where every rank validates before any communicates (a refusal inside the engine
+  // could come from the serial reference on rank 0 alone, leaving the others at a barrier).
+  if (o.engine == GridEngine::dense) dense::require_compiled(p.dims);
   if (o.slab_layers > 0 && o.contiguous_slabs)
     throw InputError("--slab-layers and --contiguous-slabs choose different layouts: give one");
   if (o.slab_layers < 0)
@@ -150,8 +154,14 @@ void validate(const GridProblem& p, const GridSearchOptions& o) {
         "weighted A* end in seconds to minutes and are not checkpointed)");
 }
 
-void require_dense_for_checkpoints(const GridSearchOptions& o, bool dense) {
+void require_dense_for_checkpoints(const GridSearchOptions& o, int dims, bool dense) {
   if (dense || (o.checkpoint.empty() && o.restart.empty())) return;
+  if (dims > dense::compiled_dims())
+    throw InputError(
+        "--checkpoint and --restart need the dense engine, which this build "
+        "compiles for 1 to " +
+        std::to_string(dense::compiled_dims()) + " dimensions (HPCPLAN_DENSE_DIMS), not " +
+        std::to_string(dims));
   throw InputError(
       "--checkpoint and --restart need the dense engine, and this run would use the sparse "
       "one; give --engine dense (or a larger --memory-budget)");

@@ -38,7 +38,8 @@ std::vector<ParamSpec> parameter_table() {
       flag("no_jump_points", "2D A*: expand every lattice state, not only the jump points"),
       choice("engine", {"auto", "dense", "sparse"},
              "dense: bit-parallel BFS / Dijkstra over the whole lattice; sparse: the best-first "
-             "engine; auto: dense for bfs and dijkstra when the lattice fits the memory budget"),
+             "engine; auto: dense for bfs and dijkstra when the lattice fits the memory budget "
+             "(and the build compiles its dimension: all 16 unless HPCPLAN_DENSE_DIMS)"),
       integer("threads", 0, 4096, "0",
               "dense engine: OpenMP threads per process (0: this process's share of the cores)"),
       integer("slab_layers", 0, 65535, "0",

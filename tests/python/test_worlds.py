@@ -27,7 +27,7 @@ def segment_samples(path, per_unit=200):
 @pytest.mark.parametrize("world,map_file,kw", [
     ("map3d", "forest.txt", dict(algo="astar")),
     ("map3d", "maze.txt", dict(algo="thetastar", resolution=0.25)),
-    ("map3d", "window.txt", dict(algo="rrt", seed=3, time=0.5)),
+    ("map3d", "window.txt", dict(algo="rrt", seed=3, time=60)),
     ("map3d", "single_box.txt", dict(algo="astar", shortcut=True)),
     ("sphere2d", "sphere_world.txt", dict(algo="astar")),
     ("sphere2d", "sphere_dense.txt", dict(algo="visgraph")),

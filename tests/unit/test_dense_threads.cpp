@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <mutex>
 #include <set>
+#include <string>
 #include <thread>
 
 #include "hpcplan/core/error.hpp"
@@ -139,8 +140,9 @@ TEST(DenseThreads, TheStopConditionRunsOnTheCallingThreadOnly) {
 }
 
 // A build compiled for fewer dimensions (-DHPCPLAN_DENSE_DIMS; the ThreadSanitizer tree has 4)
-// refuses the next one in one line, and the planner's automatic choice runs it on the sparse
-// engine instead. In a full build (16) there is no such dimension: skipped.
+// refuses the next one in one line (validate(), before any rank communicates), and the
+// planner's automatic choice runs it on the sparse engine instead. In a full build (16) there is no
+// such dimension: skipped.
 TEST(DenseBuild, ADimensionNotCompiledIsRefusedAndAutoPicksTheSparseEngine) {
   const int compiled = dense::compiled_dims();
   if (compiled >= 16) GTEST_SKIP() << "every dimension is compiled in this build";
@@ -166,6 +168,17 @@ TEST(DenseBuild, ADimensionNotCompiledIsRefusedAndAutoPicksTheSparseEngine) {
   EXPECT_EQ(automatic.options.engine, "sparse");
   EXPECT_EQ(automatic.result.status, sparse.result.status);
   EXPECT_EQ(automatic.result.hops, sparse.result.hops);
+  // A checkpoint needs the dense engine: the refusal names the build, not the budget.
+  o.checkpoint = ::testing::TempDir() + "hpcplan-dense-build-ckpt";
+  try {
+    solve_grid(p, o);
+    FAIL() << "a checkpointed run was accepted on the sparse engine";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("which this build compiles for 1 to " +
+                                         std::to_string(compiled) + " dimensions"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -96,9 +96,14 @@ std::uint64_t planned_bytes(const GogField& field, const Query& query, int ranks
 // with -DHPCPLAN_DENSE_DIMS=N (search() refuses a higher one; --engine auto picks sparse there).
 int compiled_dims();
 
+// InputError naming the build option when `dims` is over compiled_dims(). Callers that run on
+// several ranks call it before any rank communicates, so that all refuse together.
+void require_compiled(int dims);
+
 // Runs the query on this rank's slab; collective over the transport's ranks. InputError if the
-// planned bytes exceed the budget (one line naming both), before anything large is allocated,
-// or if a rank's restart checkpoint is refused (every rank throws it, with that rank's
+// lattice's dimension is not compiled (require_compiled), if the planned bytes exceed the
+// budget (one line naming both), before anything large is allocated, or if a rank's restart
+// checkpoint is refused (every rank throws it, with that rank's
 // message). RunError if a checkpoint cannot be written.
 Result search(const GogField& field, const Query& query, SlabTransport& transport);
 

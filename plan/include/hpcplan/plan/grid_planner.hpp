@@ -106,7 +106,8 @@ GridReport prepare_grid_report(const GridProblem& problem, const GridSearchOptio
 // The dense engine: its memory budget per process (--memory-budget, else what max_states buys
 // the sparse engine), its OpenMP threads per process (--threads, else the process's share of
 // the cores), whether `ranks` slabs fit the budget, whether it runs this query (--engine
-// dense, or auto for BFS and Dijkstra when they fit), and a run on this process's slab,
+// dense, or auto for BFS and Dijkstra when they fit and the dimension is compiled: see
+// dense::compiled_dims), and a run on this process's slab,
 // collective over the transport, filling the report (its path re-validated move by move with
 // the lattice graph).
 std::uint64_t dense_memory_budget(const GridSearchOptions& options, const GridReport& report);

@@ -75,7 +75,7 @@ struct GridSearchOptions {
 // Throws InputError for anything a user could have got wrong.
 void validate(const GridProblem& problem, const GridSearchOptions& options);
 // InputError if the options ask for checkpoints and the run does not use the dense engine.
-void require_dense_for_checkpoints(const GridSearchOptions& options, bool dense);
+void require_dense_for_checkpoints(const GridSearchOptions& options, int dims, bool dense);
 
 // Seed 002 III-B: from the nominal corner, advance one voxel at a time, one axis after another
 // (axis 0, 1, ..., d-1, 0, ...), towards the opposite corner until the state is free.
