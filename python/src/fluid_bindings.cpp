@@ -98,8 +98,7 @@ class Fluid {
   // hpcplan sph --json's object for the frames run so far.
   py::object report() const {
     const Use use(*this);
-    const int threads = call_threads(threads_);
-    io::SphRun info = session_->describe(threads > 0 ? threads : omp_get_max_threads());
+    io::SphRun info = session_->describe(threads());
     info.report = total_;
     info.summary = sph::summarise(session_->fluid().full_state());
     double seconds = 0.0;

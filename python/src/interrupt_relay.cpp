@@ -130,9 +130,8 @@ void InterruptRelay::run(const std::function<void()>& job, std::function<void()>
   }
   struct Done {
     Relay& r;
-    bool installed = false;
     ~Done() {
-      if (installed) {
+      if (r.installed) {
         sigaction(SIGINT, &r.replaced, nullptr);
         r.installed = false;
       }
@@ -164,7 +163,6 @@ void InterruptRelay::run(const std::function<void()>& job, std::function<void()>
     ours.sa_flags = SA_SIGINFO | SA_RESTART;  // the job's system calls go on, not EINTR
     sigemptyset(&ours.sa_mask);
     sigaction(SIGINT, &ours, nullptr);
-    done.installed = true;
     r.installed = true;
   }
   job();
