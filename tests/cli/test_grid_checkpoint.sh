@@ -12,10 +12,13 @@ trap 'rm -rf "$dir"' EXIT
 fail() { echo "grid_checkpoint: FAIL: $*" >&2; exit 1; }
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 
-# 4D, extent 100: 62.8 million states, 198 levels; 2 s on two cores of the 2-core VM. The
-# signal goes once the first periodic checkpoint (after 0.2 s) is there, so the run is well
-# inside; a run that finishes first would fail the status check, not pass it.
-problem=(--dims 4 --extent 100 --engine dense)
+# 4D, extent 80: 41 million states, 158 levels; about a second on two cores of the 2-core VM.
+# The interrupted runs checkpoint at every level (--checkpoint-every 1e-6: due at each
+# boundary) and are signalled once the first checkpoint is there, i.e. after their first level:
+# whatever the machine's speed, a run is then well inside, with each of its remaining levels
+# writing a 14 MB checkpoint (a run that finished first would fail the status check, not pass).
+problem=(--dims 4 --extent 80 --engine dense)
+every=(--checkpoint-every 0.000001)
 same() {  # same REFERENCE.json RESTARTED.json: answer and counts equal
   python3 - "$1" "$2" <<'PY' || fail "the restarted run differs from the uninterrupted one"
 import json, sys
@@ -36,21 +39,21 @@ assert j["status"] == "interrupted" and j["interrupted_by"] == sys.argv[2], j
 assert j["checkpoint"] == sys.argv[3] and j["cost"] is None, j
 PY
 }
-wait_for() {  # wait_for FILE PID: until FILE exists (the run is past its first checkpoint)
-  for _ in $(seq 1 3000); do
-    [[ -e $1 ]] && return 0
-    kill -0 "$2" 2>/dev/null || return 1
+wait_for() {  # wait_for FILE PID: until FILE exists (the run is past its first level); fails
+  # if the run ends first, or after 120 s (a guard: the first level takes well under a second)
+  local deadline=$((SECONDS + 120))
+  until [[ -e $1 ]]; do
+    kill -0 "$2" 2>/dev/null && ((SECONDS < deadline)) || return 1
     sleep 0.01
   done
-  return 1
 }
 
 timeout 300 "$bin" grid "${problem[@]}" --threads 2 --algo bfs --json > "$dir/ref.json" || fail "reference run failed"
 for sig in USR1 TERM; do
   ck=$dir/bfs_$sig.ckpt
   # (Not under timeout, which would take the signal itself; ctest's limit guards it.)
-  "$bin" grid "${problem[@]}" --threads 2 --algo bfs --json --checkpoint "$ck" \
-    --checkpoint-every 0.2 > "$dir/int.json" &
+  "$bin" grid "${problem[@]}" --threads 2 --algo bfs --json --checkpoint "$ck" "${every[@]}" \
+    > "$dir/int.json" &
   pid=$!
   wait_for "$ck" "$pid" || fail "no checkpoint appeared"
   kill -"$sig" "$pid"
@@ -78,7 +81,7 @@ refuse "is not a readable regular file" --dims 2 --algo bfs --restart "$dir/none
 refuse "is not an hpcplan dense lattice checkpoint" --dims 2 --algo bfs --restart "$dir/ref.json"
 refuse "(engine = bfs; this run has engine = dijkstra)" "${problem[@]}" --threads 2 --algo dijkstra \
   --restart "$dir/bfs_USR1.ckpt"
-refuse "(extent = 100; this run has extent = 99)" --dims 4 --extent 99 --engine dense \
+refuse "(extent = 80; this run has extent = 79)" --dims 4 --extent 79 --engine dense \
   --threads 2 --algo bfs --restart "$dir/bfs_USR1.ckpt"
 refuse "--checkpoint" --dims 2 --algo bfs --checkpoint "$dir/no/such/dir/ck"
 echo "grid_checkpoint: bad input refused"
@@ -87,13 +90,14 @@ echo "grid_checkpoint: bad input refused"
 # Under AddressSanitizer, memory errors but not leaks: Open MPI's components leak at start-up
 # and are unloaded before LeakSanitizer reports (tests/mpi/CMakeLists.txt says more).
 [[ -z ${ASAN_OPTIONS:-} ]] || export ASAN_OPTIONS=$ASAN_OPTIONS:detect_leaks=0
-# Two ranks (Dijkstra at extent 60, with its path): SIGUSR1 to mpirun, which passes it on to
-# both ranks.
+# Two ranks (Dijkstra at extent 60, with its path, 166 buckets): SIGUSR1 to mpirun, which
+# passes it on to both ranks, once both have checkpointed their first bucket (as above: every
+# bucket writes one, so the run is well inside).
 timeout 300 "$mpirun" -np 2 "$bin" grid --dims 4 --extent 60 --engine dense --threads 1 --algo dijkstra --path \
   --json > "$dir/mref.json" || fail "two-rank reference run failed"
 ck=$dir/dij.ckpt
 "$mpirun" -np 2 "$bin" grid --dims 4 --extent 60 --engine dense --threads 1 --algo dijkstra --path \
-  --json --checkpoint "$ck" --checkpoint-every 0.05 > "$dir/mint.json" &
+  --json --checkpoint "$ck" "${every[@]}" > "$dir/mint.json" &
 pid=$!
 wait_for "$ck.r1" "$pid" || fail "no two-rank checkpoint appeared"
 kill -USR1 "$pid"
