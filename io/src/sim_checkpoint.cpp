@@ -68,7 +68,12 @@ static_assert(sizeof(TrajectoryRow) == 80, "TrajectoryRow's fields changed: name
 namespace {
 
 constexpr std::string_view kMagic = "hpcplan simulator checkpoint\n";
-constexpr std::uint32_t kFormat = 1;
+// Format 2 (issue 46): the runs were made with the robot's particle taken out of the fluid when
+// the robot takes its place (sim/simulator.hpp). A format 1 file holds runs made while that
+// particle stayed in the fluid, unseen: its records are laid out the same, but a restart from it
+// would mix runs of two simulations, so it is refused ("has checkpoint format 1; this hpcplan
+// reads format 2").
+constexpr std::uint32_t kFormat = 2;
 
 // nlohmann's document builder, refusing nesting deeper than the checkpoint's own (records in
 // arrays in the top object, positions in those: 3) as it reads.

@@ -1,10 +1,13 @@
 #include "hpcplan/sim/simulator.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <deque>
 #include <optional>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/splitmix64.hpp"
@@ -118,6 +121,31 @@ Placement place_robot_and_goal(sph::Scenario scenario, const sph::FluidState& s,
   return best;
 }
 
+sph::FluidState without_particle(sph::FluidState state, std::uint32_t id) {
+  sph::Particles& p = state.particles;
+  const std::size_t n = p.size();
+  std::size_t at = n;
+  for (std::size_t i = 0; i < n; ++i)
+    if (p.id[i] == id) {
+      at = i;
+      break;
+    }
+  if (at == n) throw RunError("internal error: no particle has id " + std::to_string(id));
+  const bool wall = p.wall[at] != 0;
+  // Every other particle keeps its order (the order of the fluid's sums): the removed one is
+  // moved to the end and cut off.
+  std::vector<std::uint32_t> order;
+  order.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (i != at) order.push_back(static_cast<std::uint32_t>(i));
+  order.push_back(static_cast<std::uint32_t>(at));
+  p.permute(order);
+  p.resize(n - 1);
+  if (!wall) --state.fluid_count;
+  state.grid.build(p);  // (a backend rebuilds it at the next frame's first substep anyway)
+  return state;
+}
+
 namespace {
 
 ReplanRecord record_of(int run, const FinishedPlan& f, const std::string& algo, double frame_dt) {
@@ -179,7 +207,17 @@ bool run_one(const SimOptions& o, int run, RunRecord& rec, std::vector<ReplanRec
     at = place_robot_and_goal(o.scenario, fluid.state(), run_seed);
   }
   rec.start_goal_distance = env::distance<3>(at.robot, at.goal);
-  const std::uint32_t exclude[2] = {at.robot_id, at.goal_id};
+  // The robot takes its particle's place: the particle leaves the fluid here, at a frame's end
+  // (the fluid goes on as a restart from a checkpoint would, one particle fewer), so that every
+  // particle left is an obstacle to the planners, the reactive layer and the contact metric.
+  // Only the goal's particle is not: it is what the robot is to reach.
+  if (at.robot_id != kNoParticle) {
+    if (at.robot_id == at.goal_id)
+      throw RunError("internal error: the robot and the goal were given the same particle");
+    fluid = sph::Fluid(without_particle(fluid.full_state(), at.robot_id), o.backend,
+                       fluid.frames_done());
+  }
+  const std::uint32_t exclude[1] = {at.goal_id};
   const sph::Box3& d = fluid.state().domain;
   const env::Aabb<3> box{{d.lo[0], d.lo[1], d.lo[2]}, {d.hi[0], d.hi[1], d.hi[2]}};
   Robot robot(at.robot, box, o.robot);

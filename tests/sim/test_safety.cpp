@@ -30,12 +30,12 @@ TEST(Safety, SignedDistanceToABox) {
 }
 
 // One fluid particle at x = 1 and one box around x = 2.1 on the robot's line (y = z = 0.5); a
-// wall particle and the robot's own particle also on the line must not count.
+// wall particle and an excluded particle (as the goal's is) also on the line must not count.
 sph::FluidState line_scene() {
   sph::FluidState s;
   s.domain = {{0, 0, 0}, {3, 1, 1}};
   s.particles.add({1.0, 0.5, 0.5}, {0, 0, 0}, 0.0, false);  // id 0: an obstacle
-  s.particles.add({0.5, 0.5, 0.5}, {0, 0, 0}, 0.0, false);  // id 1: the robot's own
+  s.particles.add({0.5, 0.5, 0.5}, {0, 0, 0}, 0.0, false);  // id 1: excluded
   s.particles.add({2.75, 0.5, 0.5}, {0, 0, 0}, 0.0, true);  // id 2: a wall particle
   s.fluid_count = 2;
   s.boxes.push_back({{{2.0, 0.3, 0.3}, {2.2, 0.7, 0.7}}, {0, 0, 0}});
@@ -67,7 +67,7 @@ TEST(Safety, AScriptedRobotThroughAParticleAndABoxCountsTwoContacts) {
   const sim::Clearance at_particle = sim::clearance(s, {1.0, 0.5, 0.6}, radii, exclude);
   EXPECT_NEAR(at_particle.particles, -0.0, 1e-12);  // centre 0.1 away: touching, not inside
   EXPECT_NEAR(at_particle.boxes, 1.0 - 0.05, 1e-12);
-  // Without the exclusion the robot's own particle is the nearest.
+  // Without the exclusion the excluded particle is the nearest.
   EXPECT_NEAR(sim::clearance(s, {0.5, 0.5, 0.5}, radii, {}).particles, -0.1, 1e-12);
   // A bigger robot touches sooner.
   sim::SafetyParams big = radii;
@@ -99,11 +99,11 @@ double brute_box(const sph::Box3& b, const Vec3& p) {
   return inside ? -depth : std::sqrt(out2);
 }
 
-double brute_clearance(const sph::FluidState& f, const Vec3& robot, std::uint32_t a,
-                       std::uint32_t b) {
+// Every particle but the goal's counts (the robot's own left the fluid: simulator.hpp).
+double brute_clearance(const sph::FluidState& f, const Vec3& robot, std::uint32_t goal_id) {
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < f.particles.size(); ++i) {
-    if (f.particles.wall[i] || f.particles.id[i] == a || f.particles.id[i] == b) continue;
+    if (f.particles.wall[i] || f.particles.id[i] == goal_id) continue;
     const sph::Vec3 x = f.particles.position(i);
     best = std::min(best, std::hypot(x[0] - robot[0], x[1] - robot[1], x[2] - robot[2]) - 0.1);
   }
@@ -129,7 +129,9 @@ TEST(Simulator, ClearanceAndContactsMatchABruteForceOnEveryFrame) {
     double worst = std::numeric_limits<double>::infinity();
     bool was_in = false;
     const sim::SimResult r = sim::run_simulation(o, {}, [&](const sim::FrameView& v) {
-      const double c = brute_clearance(*v.fluid, v.robot, robot_id, goal_id);
+      ASSERT_EQ(std::count(v.fluid->particles.id.begin(), v.fluid->particles.id.end(), robot_id), 0)
+          << "the robot's particle is still in the fluid at frame " << v.frame;
+      const double c = brute_clearance(*v.fluid, v.robot, goal_id);
       ASSERT_NEAR(v.clearance, c, 1e-12) << "frame " << v.frame;
       ++frames;
       worst = std::min(worst, c);

@@ -47,7 +47,7 @@ class ReactiveController {
 
   // The velocity to command this frame, given the plan follower's wish. `state` must have
   // current positions and velocities (Fluid::full_state()); particles whose id is in `exclude`
-  // are not obstacles.
+  // are not obstacles (the simulator's: the goal's alone).
   // The robot moves for `dt` (one frame) at the chosen velocity before the fluid moves again.
   env::Vec<3> choose(const sph::FluidState& state, const env::Vec<3>& position,
                      const env::Vec<3>& wished, std::span<const std::uint32_t> exclude, double dt);

@@ -6,8 +6,9 @@
 //
 // Geometry: the robot is a ball of `robot_radius` (default the seed's particle radius, 0.05);
 // every fluid particle is a ball of `particle_radius` (the seed's 0.05); boxes are as the
-// physics has them. The robot's and the goal's own particles are not obstacles (the robot does
-// not collide with itself, and reaching the goal means touching it). Wall particles are not
+// physics has them. Every fluid particle is an obstacle but the goal's (reaching the goal means
+// touching it): the robot has no particle of its own in the fluid, the one it was drawn from
+// having left the fluid when the robot took its place (simulator.hpp). Wall particles are not
 // obstacles either: they stand outside the domain, and the robot's centre is kept inside it.
 //
 // Clearance: the signed gap between the robot's surface and the nearest obstacle surface; a

@@ -3,10 +3,10 @@
 // every few frames.
 //
 // One run: the fluid is built and settles for `settle_frames`; then a robot and a goal are
-// drawn from the fluid particles at least 0.5 L apart (seeded; their particles stop being
-// obstacles), and the frame loop runs: step the fluid, take any finished plan, move the robot,
-// stop at the goal (within 4 particle radii) or at a cap, and every `replan_every` frames ask
-// for a plan from the robot to where the goal is now. Replans count from the first one after
+// drawn from the fluid particles at least 0.5 L apart (seeded; the robot's particle leaves the
+// fluid, see below), and the frame loop runs: step the fluid, take any finished plan, move the
+// robot, stop at the goal (within 4 particle radii) or at a cap, and every `replan_every` frames
+// ask for a plan from the robot to where the goal is now. Replans count from the first one after
 // the robot and goal exist; a run that hits --max-sim-s or --max-wall-s is recorded as failed.
 //
 // Scenarios: the seed's particles, static and dynamic (seed preset), and dambreak (beyond the
@@ -14,6 +14,17 @@
 // 4 m x 1 m x 3 m collapses as the run starts (no settling), and the robot crosses the tank from
 // a seeded point in one end bay (x within 0.2..1.0 m of its end wall, 0.2..0.8 m off the side
 // walls, 0.3..1.0 m above the floor) to a fixed goal drawn the same way in the other bay.
+//
+// The robot and its particle (seed 000: "two particles are designated as robot and goal"; the
+// robot *is* its particle): the robot takes its particle's place, and the particle leaves the
+// fluid there and then (without_particle below), so there is one body where the robot is, and
+// every particle the fluid holds is an obstacle to the planners' snapshot, the reactive layer
+// and the contact metric, but the goal's, which the robot is to reach. (Until issue 46 the
+// particle stayed in the fluid and drifted with it while all three skipped it: the robot could
+// overlap a particle no one saw.) The robot does not push the fluid: it is the seed's
+// proportional controller moving a point, not an SPH particle (robot.hpp), before and after.
+// The goal's particle stays in the fluid and the goal moves with it. A run's particle_count is
+// the fluid as built (the robot's particle included).
 //
 // Pacing:
 //   realtime  the seed's: plans run on the planner thread (one at a time) while frames go on,
@@ -89,8 +100,9 @@ struct SimResult {
 
 // Where the robot and the goal start. The seed's scenarios: two fluid particles at least half
 // the box apart, drawn by id from a generator seeded with `seed` (the farthest pair drawn if
-// 10,000 draws find none); the goal then moves with its particle. dambreak: two fixed points,
-// one in each end bay (see above), neither a particle.
+// 10,000 draws find none); the robot's particle then leaves the fluid (see above) and the goal
+// moves with its particle. dambreak: two fixed points, one in each end bay (see above),
+// neither a particle.
 inline constexpr std::uint32_t kNoParticle = 0xFFFFFFFFu;
 struct Placement {
   std::uint32_t robot_id = kNoParticle, goal_id = kNoParticle;
@@ -98,6 +110,11 @@ struct Placement {
 };
 Placement place_robot_and_goal(sph::Scenario scenario, const sph::FluidState& state,
                                std::uint64_t seed);
+
+// `state` without the particle of this id (the robot's, when the robot takes its place): every
+// other particle keeps its entries and its order, the fluid count (for a fluid particle) drops
+// by one and the neighbour grid is rebuilt. RunError if no particle has the id.
+sph::FluidState without_particle(sph::FluidState state, std::uint32_t id);
 
 // The fluid a run of this scenario starts from (preset, scenario, particles, seed).
 sph::FluidOptions fluid_options(const SimOptions& options, std::uint64_t seed);

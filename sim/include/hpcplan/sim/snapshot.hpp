@@ -1,7 +1,8 @@
 #pragma once
 // The frame as planners see it: obstacle particles and boxes copied out of the fluid between
-// frames (the planner thread never reads the fluid's arrays). The robot's and the goal's own
-// particles are left out: a robot does not plan around itself or its target.
+// frames (the planner thread never reads the fluid's arrays). The simulator leaves out the
+// goal's particle alone (a robot does not plan around its target); the robot's own particle is
+// not in the fluid any more (it left when the robot took its place: simulator.hpp).
 #include <cstdint>
 #include <span>
 
