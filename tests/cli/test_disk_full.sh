@@ -2,8 +2,9 @@
 # A full disk, for real: a 1 MiB tmpfs mounted for the test. Every long job's outputs (the grid's
 # checkpoints and --output, the fluid's VTK series and checkpoint, the simulator's checkpoint
 # and CSV) fail with exit 1 and one line naming the file and "No space left on device", and no
-# temporary file is left behind. Where mounting is not permitted (an unprivileged container),
-# the test is skipped (exit 77) and says so.
+# temporary file is left behind. Run by a user other than root, who cannot mount, the test is
+# skipped (exit 77) and prints why. As root (the test command in CI) a tmpfs that cannot be
+# mounted is a failure, not a skip: the test would otherwise pass without testing anything.
 # Usage: test_disk_full.sh HPCPLAN
 set -uo pipefail
 bin=$1
@@ -11,9 +12,12 @@ mnt=$(mktemp -d)
 cleanup() { umount "$mnt" 2>/dev/null; rmdir "$mnt"; }
 trap cleanup EXIT
 fail() { echo "disk_full: FAIL: $*" >&2; exit 1; }
-if ! mount -t tmpfs -o size=1M tmpfs "$mnt" 2>/dev/null; then
-  echo "disk_full: SKIPPED: cannot mount a tmpfs here (needs root with CAP_SYS_ADMIN)"
-  exit 77
+if ! why=$(mount -t tmpfs -o size=1M tmpfs "$mnt" 2>&1); then
+  [[ $(id -u) -eq 0 ]] || {
+    echo "disk_full: SKIPPED: user $(id -un) cannot mount a tmpfs (needs root): $why"
+    exit 77
+  }
+  fail "cannot mount a 1 MiB tmpfs on $mnt, although running as root: $why"
 fi
 
 full() {  # full WHAT ARGS...: the run fails with exit 1 and a one-line ENOSPC message
