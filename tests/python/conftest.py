@@ -122,3 +122,11 @@ def check_seed_rule_path(oracle, path, start, goal):
 @pytest.fixture
 def maps():
     return MAPS
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_configure(config):
+    """Every skip prints its reason in the summary (as -rs would): a skip is never silent."""
+    chars = config.option.reportchars
+    if "s" not in chars and "a" not in chars.lower():
+        config.option.reportchars = chars + "s"
