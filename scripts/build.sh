@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 dir=${1:-build}
 shift || true
-config=(-DCMAKE_BUILD_TYPE=Release -DHPCPLAN_BUILD_TESTS=ON -DHPCPLAN_BUILD_BENCH=ON
+config=(-DCMAKE_BUILD_TYPE=Release -DHPCPLAN_BUILD_TESTS=ON -DHPCPLAN_BUILD_BENCH=ON -DHPCPLAN_BUILD_MICROBENCH=ON
   -DHPCPLAN_BUILD_CLI=ON -DHPCPLAN_BUILD_PYTHON=ON -DHPCPLAN_SANITIZE= -DHPCPLAN_REQUIRE_CUDA=OFF -DHPCPLAN_DENSE_DIMS=16)
 targets=()
 while (($#)); do
@@ -19,5 +19,16 @@ while (($#)); do
 done
 generator=()
 if [[ ! -f "$dir/CMakeCache.txt" ]] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
-cmake -S . -B "$dir" "${generator[@]}" "${config[@]}" >/dev/null
+# The configure step's output is kept in the tree (cmake-configure.log) and shown only in part:
+# the project's own status lines (hpcplan: ..., e.g. whether the fluid's CUDA backend is built)
+# and CMake's warnings, so the build log says what was built; all of it when configuring fails.
+mkdir -p "$dir"
+if ! cmake -S . -B "$dir" "${generator[@]}" "${config[@]}" > "$dir/cmake-configure.log" 2>&1; then
+  cat "$dir/cmake-configure.log" >&2
+  echo "build.sh: configuring $dir failed (above; also in $dir/cmake-configure.log)" >&2
+  exit 1
+fi
+awk -v dir="$dir" '/^CMake (Deprecation )?Warning/ { warning = 1 }
+  warning && /^$/ { warning = 0 }
+  warning || /^-- hpcplan:/ { print "build.sh: " dir ": " $0 }' "$dir/cmake-configure.log"
 cmake --build "$dir" --parallel "$(nproc)" "${targets[@]}"
