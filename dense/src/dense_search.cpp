@@ -8,22 +8,16 @@
 #include <stdexcept>
 #include <string>
 
-#include "cost_class_dijkstra.hpp"
-#include "engine_common.hpp"
+#include "engine_dims.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/format.hpp"
-#include "level_bfs.hpp"
 
 namespace hpcplan::dense {
 namespace {
 
-// The unrolled seed-rule kernel up to this many dimensions; the move table beyond.
-constexpr int kMaxSeedKernelDims = 8;
-
-// The dimensions compiled: all (16) unless a build asks for fewer. The grid checkpoint's fuzz
-// target (tests/fuzz) runs a 3D lattice only and compiles this file with libFuzzer's
-// instrumentation, ASan and UBSan, where every dimension's engine took clang over 12 minutes
-// of one core (the longest step of the test command); its build compiles the first three.
+// The dimensions compiled: all (16) unless a build asks for fewer (HPCPLAN_DENSE_DIMS): each
+// has its translation unit (engine_dims.hpp), generated for these dimensions only. The grid
+// checkpoint's fuzz target (tests/fuzz) runs a 3D lattice only and compiles the first three.
 #ifndef HPCPLAN_DENSE_COMPILED_DIMS
 #define HPCPLAN_DENSE_COMPILED_DIMS 16
 #endif
@@ -32,9 +26,7 @@ constexpr int kCompiledDims = HPCPLAN_DENSE_COMPILED_DIMS;
 // 8 x 8 tiles unless their window table would pass this; rows of 64 then (1D always).
 constexpr std::uint64_t kMaxSquareTable = std::uint64_t{32} << 20;
 
-int max_word_steps(const Query& q, int dims) {
-  return q.connectivity == Connectivity::full ? dims : 2;
-}
+using detail::max_word_steps;
 
 int in_tile_axes(const GogField& field, const Query& q) {
   const int dims = field.dims();
@@ -47,96 +39,6 @@ int in_tile_axes(const GogField& field, const Query& q) {
                  kMaxSquareTable
              ? 2
              : 1;
-}
-
-template <int D, int K>
-struct SeedKernel {
-  template <bool kSplit, class Out>
-  [[gnu::always_inline]] std::uint64_t expand(Word f, const FreeWindows::At& at, int stride,
-                                              const std::int64_t* W, Out&& out) const {
-    return SeedMoves<D, K>::template expand<kSplit>(f, at, stride, W, out);
-  }
-};
-
-template <int K>
-struct TableKernel {
-  const TableMoves& table;
-  template <bool kSplit, class Out>
-  std::uint64_t expand(Word f, const FreeWindows::At& at, int stride, const std::int64_t* W,
-                       Out&& out) const {
-    return table.template expand<K, kSplit>(f, at, stride, W, out);
-  }
-};
-
-template <int D, int K, class Kernel>
-Result run_engine(const GogField& field, const Query& q, SlabTransport& tr,
-                  const TileLayout& layout, const FreeWindows& windows, const Kernel& kernel,
-                  const detail::SlabMap& slabs) {
-  if (q.algorithm == Algorithm::bfs) {
-    detail::LevelBfs<D, K, Kernel> engine(field, q, tr, layout, windows, kernel, slabs);
-    return engine.run();
-  }
-  detail::CostClassDijkstra<D, K, Kernel> engine(field, q, tr, layout, windows, kernel, slabs);
-  return engine.run();
-}
-
-template <int D, int K>
-Result run_shape(const GogField& field, const Query& q, SlabTransport& tr) {
-  const TileLayout layout(D, field.extent(), K);
-  const FreeWindows windows(field, layout, max_word_steps(q, D));
-  const detail::SlabMap slabs = detail::plan_slabs(field, layout, tr.rank(), tr.ranks(),
-                                                   std::max(1, q.threads), q.block_layers);
-  Result r;
-  if constexpr (D > kMaxSeedKernelDims) {
-    // Beyond 8D the seed rule runs from the move table: the unrolled kernel's code grows with
-    // d^2 and its compile time faster (8D: 19 s for one translation unit; 16D would be minutes),
-    // for lattices that are rarely wide enough to be worth it.
-    const TableMoves table(layout, 2);
-    r = run_engine<D, K>(field, q, tr, layout, windows, TableKernel<K>{table}, slabs);
-  } else {
-    if constexpr (D <= kMaxFullConnectivityDims) {
-      if (q.connectivity == Connectivity::full) {
-        const TableMoves table(layout, D);
-        r = run_engine<D, K>(field, q, tr, layout, windows, TableKernel<K>{table}, slabs);
-      }
-    }
-    if (q.connectivity != Connectivity::full)
-      r = run_engine<D, K>(field, q, tr, layout, windows, SeedKernel<D, K>{}, slabs);
-  }
-  Figures& f = r.figures;
-  f.in_tile_axes = K;
-  f.tiles = layout.tile_count();
-  f.threads = slabs.threads;
-  f.ranks = tr.ranks();
-  f.rank_layers = slabs.rank_layers;
-  f.block_layers = slabs.block_layers;
-  f.blocks = static_cast<int>(slabs.blocks.size());
-  f.table_bytes = windows.bytes();
-  // Every window mask of the table answers 64 validity questions of the field, once.
-  r.counters.collision_checks = windows.bytes() / sizeof(Word) * 64;
-  double free = 0.0;
-  for (double w : free_states_per_layer(field, layout)) free += w;
-  f.free_states = static_cast<std::uint64_t>(free + 0.5);
-  std::uint64_t halo[2] = {tr.messages_sent, tr.bytes_sent};
-  tr.sum(halo);
-  f.halo_messages = halo[0];
-  f.halo_bytes = halo[1];
-  double ex = tr.exchange_ms;
-  double neg = -ex;
-  tr.min(std::span<double>(&neg, 1));
-  f.exchange_ms = -neg;
-  return r;
-}
-
-template <int D>
-Result run_dims(const GogField& field, const Query& q, SlabTransport& tr, int k) {
-  if constexpr (D == 1) {
-    return run_shape<1, 1>(field, q, tr);
-  } else if constexpr (D <= 3) {
-    return k == 1 ? run_shape<D, 1>(field, q, tr) : run_shape<D, 2>(field, q, tr);
-  } else {
-    return run_shape<D, 2>(field, q, tr);
-  }
 }
 
 }  // namespace
@@ -155,9 +57,10 @@ std::uint64_t planned_bytes(const GogField& field, const Query& q, int ranks) {
   std::uint64_t bytes =
       FreeWindows::table_bytes(layout, field.threshold(), max_word_steps(q, dims));
   if (q.algorithm == Algorithm::bfs) {
-    bytes += detail::LevelBfs<2, 2, SeedKernel<2, 2>>::store_bytes(tiles);
+    bytes += detail::LevelBfs<2, 2, detail::SeedKernel<2, 2>>::store_bytes(tiles);
   } else {
-    bytes += detail::CostClassDijkstra<2, 2, SeedKernel<2, 2>>::store_bytes(tiles, q.keep_path);
+    bytes += detail::CostClassDijkstra<2, 2, detail::SeedKernel<2, 2>>::store_bytes(tiles,
+                                                                                   q.keep_path);
   }
   // A first frontier: one layer's tiles as entries.
   bytes += layout.layer_tiles() * sizeof(detail::Entry);
@@ -213,7 +116,7 @@ Result search(const GogField& field, const Query& asked, SlabTransport& tr) {
   switch (field.dims()) {
 #define HPCPLAN_DENSE_DIMS(d)                                              \
   case d:                                                                  \
-    if constexpr (d <= kCompiledDims) return run_dims<d>(field, q, tr, k); \
+    if constexpr (d <= kCompiledDims) return detail::run_dims<d>(field, q, tr, k); \
     break;
     HPCPLAN_DENSE_DIMS(1)
     HPCPLAN_DENSE_DIMS(2)
