@@ -11,6 +11,13 @@
 
 namespace hpcplan {
 
+// The instantiations grid_planner_impl.hpp declares extern.
+template GridReport solve_grid_with<search::DefaultVisitedMap>(const GogField&, const GridProblem&,
+                                                               const GridSearchOptions&, double);
+template GridReport solve_grid_with<search::StampedDensePolicy>(const GogField&,
+                                                                const GridProblem&,
+                                                                const GridSearchOptions&, double);
+
 bool dense_visited_fits(int dims, int extent) {
   // Out-of-range problems are refused by validate(); they must not reach a key layout here.
   if (dims < 1 || dims > kMaxDims || extent < 2 || extent > kMaxExtent) return false;

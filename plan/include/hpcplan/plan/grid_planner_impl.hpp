@@ -140,6 +140,20 @@ GridReport solve_grid_with(const GogField& field, const GridProblem& problem,
   return report;
 }
 
+// The two visited maps solve_grid() itself runs are instantiated once, in grid_planner.cpp:
+// every other file that includes this header (the tests, the benchmarks, the rank simulation)
+// links those instead of compiling the whole search again (25 s of one core for the unit test
+// that compares the two maps, more under the sanitizers). A policy not listed here is still
+// instantiated where it is used.
+extern template GridReport solve_grid_with<search::DefaultVisitedMap>(const GogField&,
+                                                                      const GridProblem&,
+                                                                      const GridSearchOptions&,
+                                                                      double);
+extern template GridReport solve_grid_with<search::StampedDensePolicy>(const GogField&,
+                                                                       const GridProblem&,
+                                                                       const GridSearchOptions&,
+                                                                       double);
+
 // The planner with a chosen visited map, building the problem's field.
 template <class MapPolicy>
 GridReport solve_grid_with(const GridProblem& problem, const GridSearchOptions& options) {
