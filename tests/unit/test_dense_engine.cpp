@@ -87,7 +87,8 @@ class DenseOracle : public ::testing::TestWithParam<std::tuple<int, int, bool>> 
 
 TEST_P(DenseOracle, MatchesTheOracleForEveryThreadCount) {
   const auto [d, trial, full] = GetParam();
-  if (full && d > kMaxFullConnectivityDims) GTEST_SKIP();
+  if (full && d > kMaxFullConnectivityDims)
+    GTEST_SKIP() << "full connectivity is limited to " << kMaxFullConnectivityDims << "D";
   const Instance in = random_instance(5000 * d + trial + (full ? 333 : 0), d);
   const GogField field(d, in.extent, in.gog);
   const oracle::Lattice o(field, full);
