@@ -6,14 +6,48 @@
 # OpenMP loops) under ThreadSanitizer.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+root=$PWD
 bash scripts/setup.sh
 jobs=$(nproc)
-# Each stage's start is printed with the command's elapsed time, so a CI log tells where a cold
-# run's minutes went.
-stage() { printf '== [%d:%02d] %s\n' $((SECONDS / 60)) $((SECONDS % 60)) "$*"; }
+# Each stage's start is printed with the command's elapsed time, and at the end every stage's
+# length, so a CI log tells where a cold run's minutes went.
+stage_names=() stage_starts=()
+stage() {
+  printf '== [%d:%02d] %s\n' $((SECONDS / 60)) $((SECONDS % 60)) "$*"
+  stage_names+=("$*") stage_starts+=("$SECONDS")
+}
+# Printed on every exit, a failed stage's too (its time runs to the failure).
+stage_summary() {
+  local i t n=${#stage_names[@]}
+  stage_starts+=("$SECONDS")
+  echo "== stage times (m:ss)"
+  for ((i = 0; i < n; ++i)); do
+    t=$((stage_starts[i + 1] - stage_starts[i]))
+    printf '  %3d:%02d  %s\n' $((t / 60)) $((t % 60)) "${stage_names[i]}"
+  done
+  printf '  %3d:%02d  total\n' $((SECONDS / 60)) $((SECONDS % 60))
+}
+trap stage_summary EXIT
+# After a build: its ten slowest steps (ninja's log); after a test stage: its ten slowest tests.
+slowest() { python3 "$root/scripts/build_report.py" "$@" --top 10; }
 # Every ctest call fails when it selects no test (a stale cache or a wrong label would
-# otherwise pass silently).
-ctest_run() { ctest --no-tests=error --output-on-failure -j "$jobs" "$@"; }
+# otherwise pass silently). ctest never shows a skipped test's output: each run's skips and
+# their reasons are printed from its JUnit report (scripts/ctest_skips.py), pass or fail.
+# A tree's first run starts the longest tests first from the committed costs of an earlier
+# run (tests/ctest_costs.txt: ctest's own cost file, which it updates after every run), so
+# that no long test starts last and leaves a core idle at the end of a stage.
+ctest_run() {
+  local rc=0
+  mkdir -p Testing/Temporary
+  if [[ ! -f Testing/Temporary/CTestCostData.txt && -f $root/tests/ctest_costs.txt ]]; then
+    cp "$root/tests/ctest_costs.txt" Testing/Temporary/CTestCostData.txt
+  fi
+  ctest --no-tests=error --output-on-failure --output-junit "$PWD/ctest-junit.xml" \
+    -j "$jobs" "$@" || rc=$?
+  python3 "$root/scripts/ctest_skips.py" "$PWD/ctest-junit.xml" || rc=1
+  slowest tests "$PWD"
+  return $rc
+}
 # ctest runs two tests at once and each fluid test runs one OpenMP thread per core; with
 # libgomp's default (spin at every barrier) the two programs' threads spun through each other's
 # time slices: the hydrostatic tank and the dam-break crossing took 111 s and 121 s side by
@@ -38,7 +72,9 @@ if command -v nvcc >/dev/null; then
 elif [[ -x /usr/local/cuda/bin/nvcc ]]; then  # installed off the PATH: name it
   cuda_required=(-DHPCPLAN_REQUIRE_CUDA=ON -DCMAKE_CUDA_COMPILER=/usr/local/cuda/bin/nvcc)
 fi
-bash scripts/build.sh build "${cuda_required[@]}"
+# The Google Benchmark programs are left out: no test runs them (HPCPLAN_BUILD_MICROBENCH).
+bash scripts/build.sh build "${cuda_required[@]}" -DHPCPLAN_BUILD_MICROBENCH=OFF
+slowest steps build
 
 # The sanitizer builds compile at -O1 with line tables only (-g1: enough for the sanitizers'
 # stack traces). At -O2 -g the ASan build cost twice the compile time (2,067 s of CPU against
@@ -52,6 +88,7 @@ stage "tests (Release)"
 stage "build (ASan + UBSan)"
 bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo "$sanitizer_flags" \
   -DHPCPLAN_SANITIZE=address,undefined -DHPCPLAN_BUILD_BENCH=OFF -DHPCPLAN_BUILD_PYTHON=OFF
+slowest steps build-asan
 stage "tests (ASan + UBSan)"
 # (The MPI suites run without leak checks: tests/mpi/CMakeLists.txt says why.)
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
@@ -73,6 +110,7 @@ stage "build (libFuzzer: the parsers' fuzz targets)"
 # parsers' sources itself (tests/fuzz/CMakeLists.txt). Their replays over the committed corpus
 # ran in both stages above (label unit); here each target fuzzes for a few seconds from it.
 bash scripts/fuzz.sh --build
+slowest steps build-fuzz
 stage "tests (libFuzzer)"
 (cd build-fuzz && ctest_run --timeout 300 -L '^fuzz$')
 
@@ -91,10 +129,11 @@ bash scripts/build.sh build-tsan -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=c
   -DHPCPLAN_DENSE_DIMS=4 \
   --target hpcplan_thread_tests --target hpcplan_sim_tests --target hpcplan_dense_thread_tests \
   --target hpcplan_sph_tests --target hpcplan_python_relay_tests
+slowest steps build-tsan
 stage "tests (ThreadSanitizer)"
 # ignore_noninstrumented_modules: accesses inside the uninstrumented runtime itself are Archer's
 # to describe, not TSan's to report.
 export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:ignore_noninstrumented_modules=1
 export OMP_TOOL_LIBRARIES=$archer ARCHER_OPTIONS=verbose=1
 (cd build-tsan && ctest_run --timeout 900 -L '^threads')
-stage "done"
+echo "== [$((SECONDS / 60)):$(printf %02d $((SECONDS % 60)))] done: every stage passed"
