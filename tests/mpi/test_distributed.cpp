@@ -356,6 +356,103 @@ TEST(DenseSlabs, EveryRankCountGivesTheSerialAnswerPathAndCounts) {
   }
 }
 
+// The dense engine from 9D to 16D (its move-table kernel) on tiny lattices: every rank count
+// gives the serial dense engine's answer, path and counts, and the serial sparse engine's
+// cost (tests/unit/test_dense_high_dims.cpp checks the serial engines against each other and
+// the oracle on more instances).
+TEST(DenseHighDims, EveryRankCountGivesTheSerialAnswer) {
+  SplitMix64 rng(91216);
+  int solved = 0;
+  for (const int d : {9, 12, 16}) {
+    GridProblem p;
+    p.dims = d;
+    p.extent = d == 9 ? 3 : 2;
+    p.gog.seed = rng.next();
+    // Runs of one cell: with GOG's default runs of 8 so small a lattice has no blocked state.
+    p.gog.shift_v = 0;
+    p.gog.shift_p = 0;
+    p.gog.density = 0.45;
+    for (const char* algo : {"bfs", "dijkstra"}) {
+      GridSearchOptions o;
+      o.algorithm = parse_grid_algorithm(algo);
+      o.engine = GridEngine::dense;
+      o.keep_path = true;
+      o.threads = 1;
+      const GridReport r = distributed::solve_grid_distributed(p, o, {}, *g_comm);
+      if (!root()) continue;
+      const GridReport s = solve_grid(p, o);
+      GridSearchOptions so = o;
+      so.engine = GridEngine::sparse;
+      const GridReport sparse = solve_grid(p, so);
+      SCOPED_TRACE(::testing::Message() << d << "D seed " << p.gog.seed << " " << algo
+                                        << " ranks " << g_comm->size());
+      EXPECT_EQ(r.options.engine, "dense");
+      EXPECT_EQ(r.distribution.scheme, g_comm->size() == 1 ? "serial" : "dense_slabs");
+      EXPECT_EQ(r.result.status, s.result.status);
+      EXPECT_EQ(r.result.status, sparse.result.status);
+      EXPECT_EQ(r.result.cost, s.result.cost);
+      EXPECT_EQ(r.result.hops, s.result.hops);
+      // Fewest moves for BFS (paths of equal length may differ in cost), least cost otherwise.
+      EXPECT_EQ(r.result.hops, sparse.result.hops);
+      if (o.algorithm == GridAlgorithm::dijkstra) {
+        EXPECT_NEAR(r.result.cost, sparse.result.cost, 1e-9 * (1 + sparse.result.cost));
+      }
+      EXPECT_EQ(r.result.path, s.result.path);
+      EXPECT_EQ(r.result.counters.expanded, s.result.counters.expanded);
+      if (r.result.status == search::Status::solved) {
+        ++solved;
+        expect_valid_path(r, p);
+      }
+    }
+  }
+  if (root()) {
+    EXPECT_GE(solved, 4);
+  }
+}
+
+// Four-word keys (16 axes of extent 5,000: 13 bits an axis, four axes a word) through the
+// distributed sparse engine: the serial cost, and a legal path.
+TEST(WidestKeys, FourWordKeysGiveTheSerialCostOnEveryRankCount) {
+  GridProblem p;
+  p.dims = 16;
+  p.extent = 5000;
+  p.gog.density = 0.3;
+  // Start and goal high in the lattice (the packed fields' top bits), a diagonal apart across
+  // the first and the last word; fields drawn until both are free (every rank draws the same).
+  SplitMix64 rng(16016);
+  for (int tries = 0; tries < 100 && !p.start; ++tries) {
+    p.gog.seed = rng.next();
+    const GogField field(p.dims, p.extent, p.gog);
+    std::vector<int> start(16, p.extent - 7), goal = start;
+    ++goal[0];
+    ++goal[15];
+    if (field.is_free(start) && field.is_free(goal)) {
+      p.start = start;
+      p.goal = goal;
+    }
+  }
+  ASSERT_TRUE(p.start.has_value());
+  for (const char* algo : {"astar", "dijkstra", "bfs"}) {
+    GridSearchOptions o;
+    o.algorithm = parse_grid_algorithm(algo);
+    o.engine = GridEngine::sparse;
+    o.keep_path = true;
+    const GridReport r = distributed::solve_grid_distributed(p, o, {}, *g_comm);
+    if (!root()) continue;
+    const GridReport s = solve_grid(p, o);
+    SCOPED_TRACE(::testing::Message() << algo << " ranks " << g_comm->size());
+    EXPECT_EQ(r.options.key_words, 4);
+    ASSERT_EQ(r.result.status, search::Status::solved);
+    ASSERT_EQ(s.result.status, search::Status::solved);
+    if (o.algorithm == GridAlgorithm::bfs) {
+      EXPECT_EQ(r.result.hops, s.result.hops);
+    } else {
+      EXPECT_NEAR(r.result.cost, s.result.cost, 1e-9 * s.result.cost);
+    }
+    expect_valid_path(r, p);
+  }
+}
+
 // A path that leaves a slab and comes back: start and goal lie in the top layer of the first
 // slab, and the path (found among random fields) climbs into the second slab between them,
 // so the walk back crosses the face twice.

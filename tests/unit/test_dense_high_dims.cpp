@@ -97,9 +97,13 @@ TEST(DenseHighDims, NineToSixteenDimensionsAgreeWithTheSparseEngine) {
         }
         ++solved;
         EXPECT_GT(field.blocked_fraction(), 0.05) << what;
+        // Fewest moves for BFS (paths of equal length may differ in cost), least cost for
+        // Dijkstra (and so its moves: a cost a + b sqrt 2 has one a and one b).
         EXPECT_EQ(dense.result.hops, sparse.result.hops) << what;
-        EXPECT_NEAR(dense.result.cost, sparse.result.cost, 1e-9 * (1 + sparse.result.cost))
-            << what;
+        if (a == GridAlgorithm::dijkstra) {
+          EXPECT_NEAR(dense.result.cost, sparse.result.cost, 1e-9 * (1 + sparse.result.cost))
+              << what;
+        }
         expect_valid_path(p, dense, what + " (dense)");
         expect_valid_path(p, sparse, what + " (sparse)");
         // Two threads split the slab; the answer and the count of settled states stay.
