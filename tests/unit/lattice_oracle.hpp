@@ -28,8 +28,11 @@ class Lattice {
 
   Lattice(const hpcplan::GogField& field, bool full) : field_(field), full_(full) {
     if (field.dims() > kMaxDims) throw std::invalid_argument("oracle::Lattice: too many axes");
+    // The state count, for the searches below; a lattice too large to count in 64 bits (16
+    // axes of 5,000) can still have its paths walked (path_length), never searched.
     n_ = 1;
-    for (int i = 0; i < field.dims(); ++i) n_ *= field.extent();
+    for (int i = 0; i < field.dims() && n_ > 0; ++i)
+      n_ = n_ > INT64_MAX / field.extent() ? -1 : n_ * field.extent();
   }
   std::int64_t index(std::span<const int> c) const {
     std::int64_t idx = 0;
@@ -107,6 +110,7 @@ class Lattice {
   }
 
   Answer dijkstra(const std::vector<int>& s, const std::vector<int>& g) const {
+    if (n_ < 0) throw std::invalid_argument("oracle::Lattice: too many states to search");
     std::vector<double> dist(n_, INFINITY);
     using Item = std::pair<double, std::int64_t>;
     std::priority_queue<Item, std::vector<Item>, std::greater<>> pq;
@@ -133,6 +137,7 @@ class Lattice {
   }
 
   Answer bfs(const std::vector<int>& s, const std::vector<int>& g) const {
+    if (n_ < 0) throw std::invalid_argument("oracle::Lattice: too many states to search");
     std::vector<std::int64_t> hops(n_, -1);
     std::queue<std::int64_t> q;
     hops[index(s)] = 0;
