@@ -163,7 +163,14 @@ for sig in USR1 TERM; do
     --vtk "$dir/int" --every 1 --checkpoint "$dir/int.bin" --checkpoint-every 1000000 --json \
     > "$dir/int.json" 2> "$dir/int.err" &
   pid=$!
-  for _ in $(seq 600); do [[ -e $dir/int/fluid_000005.vtu ]] && break; sleep 0.1; done
+  # Wait for the event, not a clock: the 600 s limit only turns a hang into a failure, and a
+  # run that ends before its fifth frame is a failure too.
+  for ((waited = 0; ; ++waited)); do
+    [[ -e $dir/int/fluid_000005.vtu ]] && break
+    kill -0 "$pid" 2> /dev/null || fail "interrupted ($sig): the run ended before its fifth frame"
+    ((waited < 6000)) || { kill -KILL "$pid"; fail "interrupted ($sig): no fifth frame in 600 s"; }
+    sleep 0.1
+  done
   kill -"$sig" "$pid"
   wait "$pid" || fail "interrupted ($sig): exit $? ($(cat "$dir/int.err"))"
   python3 - "$dir/int.json" "$sig" <<'PY' || fail "interrupted ($sig): report"
