@@ -33,14 +33,15 @@ slowest() { python3 "$root/scripts/build_report.py" "$@" --top 10; }
 # Every ctest call fails when it selects no test (a stale cache or a wrong label would
 # otherwise pass silently). ctest never shows a skipped test's output: each run's skips and
 # their reasons are printed from its JUnit report (scripts/ctest_skips.py), pass or fail.
-# A tree's first run starts the longest tests first from the committed costs of an earlier
-# run (tests/ctest_costs.txt: ctest's own cost file, which it updates after every run), so
-# that no long test starts last and leaves a core idle at the end of a stage.
+# A tree's first run starts the longest tests first, from the costs an earlier cold run
+# measured in a tree of that name (tests/ctest_costs/<tree>.txt: ctest's own cost file, which
+# it updates after every run), so that no long test starts last and leaves a core idle at the
+# end of a stage.
 ctest_run() {
-  local rc=0
+  local rc=0 costs=$root/tests/ctest_costs/${PWD##*/}.txt
   mkdir -p Testing/Temporary
-  if [[ ! -f Testing/Temporary/CTestCostData.txt && -f $root/tests/ctest_costs.txt ]]; then
-    cp "$root/tests/ctest_costs.txt" Testing/Temporary/CTestCostData.txt
+  if [[ ! -f Testing/Temporary/CTestCostData.txt && -f $costs ]]; then
+    cp "$costs" Testing/Temporary/CTestCostData.txt
   fi
   ctest --no-tests=error --output-on-failure --output-junit "$PWD/ctest-junit.xml" \
     -j "$jobs" "$@" || rc=$?
@@ -87,7 +88,7 @@ stage "tests (Release)"
 
 stage "build (ASan + UBSan)"
 bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo "$sanitizer_flags" \
-  -DHPCPLAN_SANITIZE=address,undefined -DHPCPLAN_BUILD_BENCH=OFF -DHPCPLAN_BUILD_PYTHON=OFF
+  -DHPCPLAN_SANITIZE=address,undefined -DHPCPLAN_BUILD_BENCH=OFF
 slowest steps build-asan
 stage "tests (ASan + UBSan)"
 # (The MPI suites run without leak checks: tests/mpi/CMakeLists.txt says why.)
@@ -101,8 +102,10 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktra
 # 2-core VM, the longest test of the stage, against 68 s for the invariants test that drives
 # every scenario's step). The MPI suite runs on 1, 2, 3 and 4 ranks here; on 8 (oversubscribed
 # four times over on the CI's 2 cores) it took 150 s under ASan, the stage's longest test, and
-# it runs on 8 in the Release stage.
-(cd build-asan && ctest_run --timeout 900 -L "unit|cli|ompl|mpi|sph|sim" \
+# it runs on 8 in the Release stage. The Python package's grid, world, fluid and API tests run
+# here too (python_api_asan, tests/python/CMakeLists.txt: the sanitizer's runtime preloaded
+# into Debian's interpreter).
+(cd build-asan && ctest_run --timeout 900 -L "unit|cli|ompl|mpi|sph|sim|python" \
   -E '^(Cli\.EveryNumericOptionRefusesBadValues|WaterValidation\..*|Simulator\.DamBreakCrossing|Invariants\.ThreadCountDoesNotChangeTheResult|mpi_distributed_np8)$')
 
 stage "build (libFuzzer: the parsers' fuzz targets)"
