@@ -10,6 +10,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 rounds=${2:-3}
+for b in hpcplan hpcplan_bench_sph; do
+  # (The test command's tree leaves the Google Benchmark programs out: HPCPLAN_BUILD_MICROBENCH.)
+  [[ -x $build/bin/$b ]] || { echo "sph_bench: $build/bin/$b not found: build with bash scripts/build.sh $build" >&2; exit 2; }
+done
 mkdir -p results
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

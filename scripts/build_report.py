@@ -4,8 +4,9 @@
   build_report.py steps BUILD_DIR [--top N]   the slowest build steps (ninja's own log)
   build_report.py tests BUILD_DIR [--top N]   the slowest tests of the last ctest run there
 
-The build steps come from BUILD_DIR/.ninja_log (the newest entry of each output: a warm
-rebuild lists only what it rebuilt), with their share of the log's whole compile time. The
+The build steps come from BUILD_DIR/.ninja_log (the newest entry of each output, so after a
+warm rebuild the steps it did not redo keep their earlier times), with their share of the
+log's whole step time. The
 tests come from ctest's LastTest.log, which records each test's own wall time (ctest -j runs
 two at once on a 2-core machine, so these are times under that load, as CI sees them).
 Prints nothing but a note when the file is not there (a tree built by make, a stage that ran
@@ -26,7 +27,7 @@ def ninja_steps(build: pathlib.Path):
         if line.startswith("#"):
             continue
         parts = line.split("\t")
-        if len(parts) < 4:
+        if len(parts) < 4 or not parts[0].isdigit() or not parts[1].isdigit():
             continue
         start, end, output = int(parts[0]), int(parts[1]), parts[3]
         # A later entry for the same output is a rebuild; ninja appends, so the last one wins.
@@ -51,7 +52,6 @@ def report_steps(build: pathlib.Path, top: int) -> None:
         print(f"  {seconds:7.1f} s  {100 * seconds / total:4.1f}%  {short_name(output)}")
 
 
-TEST_END = re.compile(r'^"(?P<name>.*)" end time: .*$')
 TEST_TIME = re.compile(r"^Test time =\s*(?P<seconds>[0-9.]+) sec")
 TEST_NAME = re.compile(r"^\d+/\d+ Test: (?P<name>.*)$")
 
@@ -91,7 +91,10 @@ def main() -> int:
     p.add_argument("build", type=pathlib.Path)
     p.add_argument("--top", type=int, default=10)
     a = p.parse_args()
-    (report_steps if a.what == "steps" else report_tests)(a.build, a.top)
+    try:
+        (report_steps if a.what == "steps" else report_tests)(a.build, a.top)
+    except Exception as e:  # a report is never what fails a stage
+        print(f"build_report: no report ({type(e).__name__}: {e})")
     return 0
 
 

@@ -51,9 +51,21 @@ def main():
         if mark is not None:
             skipped.append((case.get("name"), mark.get("message", ""), reason(output)))
             continue
-        for line in output.splitlines():
+        lines = output.splitlines()
+        for k, line in enumerate(lines):
             if re.match(r"SKIPPED \[\d+\] ", line):
                 inner.append((case.get("name"), line.rstrip()))
+            # A GTEST_SKIP among the cases of a binary that ctest runs whole (the MPI suites,
+            # the threaded tests): "file:line: Skipped", the message, "[  SKIPPED ] Case (N ms)".
+            if line.rstrip().endswith(": Skipped"):
+                message = []
+                for rest in lines[k + 1:]:
+                    m = re.match(r"\[  SKIPPED \] (\S+)", rest)
+                    if m:
+                        why = " ".join(x.strip() for x in message) or "(no reason given)"
+                        inner.append((case.get("name"), f"{m.group(1)}: {why}"))
+                        break
+                    message.append(rest)
     print(f"skips: {len(skipped)} of {len(cases)} tests skipped"
           + (f", {len(inner)} skip lines inside passing tests" if inner else ""))
     for name, how, why in skipped:

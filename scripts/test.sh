@@ -43,8 +43,10 @@ ctest_run() {
   if [[ ! -f Testing/Temporary/CTestCostData.txt && -f $costs ]]; then
     cp "$costs" Testing/Temporary/CTestCostData.txt
   fi
+  # (A passing test's output is kept whole, not cut at ctest's default 1,024 bytes: the skip
+  # lines of a binary that runs many cases come at its end.)
   ctest --no-tests=error --output-on-failure --output-junit "$PWD/ctest-junit.xml" \
-    -j "$jobs" "$@" || rc=$?
+    --test-output-size-passed 4194304 -j "$jobs" "$@" || rc=$?
   python3 "$root/scripts/ctest_skips.py" "$PWD/ctest-junit.xml" || rc=1
   slowest tests "$PWD"
   return $rc

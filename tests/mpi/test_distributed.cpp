@@ -357,9 +357,10 @@ TEST(DenseSlabs, EveryRankCountGivesTheSerialAnswerPathAndCounts) {
 }
 
 // The dense engine from 9D to 16D (its move-table kernel) on tiny lattices: every rank count
-// gives the serial dense engine's answer, path and counts, and the serial sparse engine's
-// cost (tests/unit/test_dense_high_dims.cpp checks the serial engines against each other and
-// the oracle on more instances).
+// gives the serial dense engine's answer, path and counts, which
+// tests/unit/test_dense_high_dims.cpp checks against the sparse engine and the oracle. (The
+// sparse reference here cost rank 0 most of the suite's time under ASan while the other ranks
+// waited: a 16D lattice has 512 moves a state.)
 TEST(DenseHighDims, EveryRankCountGivesTheSerialAnswer) {
   SplitMix64 rng(91216);
   int solved = 0;
@@ -381,9 +382,6 @@ TEST(DenseHighDims, EveryRankCountGivesTheSerialAnswer) {
       const GridReport r = distributed::solve_grid_distributed(p, o, {}, *g_comm);
       if (!root()) continue;
       const GridReport s = solve_grid(p, o);
-      GridSearchOptions so = o;
-      so.engine = GridEngine::sparse;
-      const GridReport sparse = solve_grid(p, so);
       SCOPED_TRACE(::testing::Message() << d << "D seed " << p.gog.seed << " " << algo
                                         << " ranks " << g_comm->size());
       EXPECT_EQ(r.options.engine, "dense");
@@ -392,11 +390,6 @@ TEST(DenseHighDims, EveryRankCountGivesTheSerialAnswer) {
       EXPECT_EQ(r.result.status, sparse.result.status);
       EXPECT_EQ(r.result.cost, s.result.cost);
       EXPECT_EQ(r.result.hops, s.result.hops);
-      // Fewest moves for BFS (paths of equal length may differ in cost), least cost otherwise.
-      EXPECT_EQ(r.result.hops, sparse.result.hops);
-      if (o.algorithm == GridAlgorithm::dijkstra) {
-        EXPECT_NEAR(r.result.cost, sparse.result.cost, 1e-9 * (1 + sparse.result.cost));
-      }
       EXPECT_EQ(r.result.path, s.result.path);
       EXPECT_EQ(r.result.counters.expanded, s.result.counters.expanded);
       if (r.result.status == search::Status::solved) {
@@ -441,9 +434,13 @@ TEST(WidestKeys, FourWordKeysGiveTheSerialCostOnEveryRankCount) {
     if (!root()) continue;
     const GridReport s = solve_grid(p, o);
     SCOPED_TRACE(::testing::Message() << algo << " ranks " << g_comm->size());
+    // EXPECT and continue, never ASSERT: rank 0 leaving the loop early would leave the other
+    // ranks waiting in the next algorithm's collective calls.
     EXPECT_EQ(r.options.key_words, 4);
-    ASSERT_EQ(r.result.status, search::Status::solved);
-    ASSERT_EQ(s.result.status, search::Status::solved);
+    EXPECT_EQ(r.result.status, search::Status::solved);
+    EXPECT_EQ(s.result.status, search::Status::solved);
+    if (r.result.status != search::Status::solved || s.result.status != search::Status::solved)
+      continue;
     if (o.algorithm == GridAlgorithm::bfs) {
       EXPECT_EQ(r.result.hops, s.result.hops);
     } else {
