@@ -51,7 +51,9 @@ def main():
         if mark is not None:
             skipped.append((case.get("name"), mark.get("message", ""), reason(output)))
             continue
-        lines = output.splitlines()
+        # (GoogleTest colours its lines where it thinks a terminal reads them, as under mpirun;
+        # ctest's report writes each escape as "[NON-XML-CHAR-0x1B]".)
+        lines = re.sub(r"(\x1b|\[NON-XML-CHAR-0x1B\])\[[0-9;]*m", "", output).splitlines()
         for k, line in enumerate(lines):
             if re.match(r"SKIPPED \[\d+\] ", line):
                 inner.append((case.get("name"), line.rstrip()))
