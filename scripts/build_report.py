@@ -41,17 +41,6 @@ def short_name(output: str) -> str:
     return name[:-2] if name.endswith(".o") else name
 
 
-def report_steps(build: pathlib.Path, top: int) -> None:
-    steps = ninja_steps(build)
-    if not steps:
-        print(f"build_report: {build}/.ninja_log not found or empty (no step times)")
-        return
-    total = sum(steps.values())
-    print(f"{build}: {len(steps)} build steps, {total:.0f} s of step time in all; the {top} slowest:")
-    for output, seconds in sorted(steps.items(), key=lambda kv: -kv[1])[:top]:
-        print(f"  {seconds:7.1f} s  {100 * seconds / total:4.1f}%  {short_name(output)}")
-
-
 TEST_TIME = re.compile(r"^Test time =\s*(?P<seconds>[0-9.]+) sec")
 TEST_NAME = re.compile(r"^\d+/\d+ Test: (?P<name>.*)$")
 
@@ -74,15 +63,20 @@ def ctest_times(build: pathlib.Path):
     return times
 
 
-def report_tests(build: pathlib.Path, top: int) -> None:
-    times = ctest_times(build)
+def report(build: pathlib.Path, what: str, top: int) -> None:
+    """Prints the `top` longest entries of the build's step or test times."""
+    if what == "steps":
+        times, source, noun, name = ninja_steps(build), ".ninja_log", "build steps", short_name
+    else:
+        times, source, noun = ctest_times(build), "Testing/Temporary/LastTest.log", "tests"
+        name = str
     if not times:
-        print(f"build_report: {build}/Testing/Temporary/LastTest.log not found (no test times)")
+        print(f"build_report: {build}/{source} not found or empty (no {noun} times)")
         return
     total = sum(times.values())
-    print(f"{build}: {len(times)} tests, {total:.0f} s of test time in all; the {top} slowest:")
-    for name, seconds in sorted(times.items(), key=lambda kv: -kv[1])[:top]:
-        print(f"  {seconds:7.1f} s  {name}")
+    print(f"{build}: {len(times)} {noun}, {total:.0f} s in all; the {top} slowest:")
+    for key, seconds in sorted(times.items(), key=lambda kv: -kv[1])[:top]:
+        print(f"  {seconds:7.1f} s  {100 * seconds / total:4.1f}%  {name(key)}")
 
 
 def main() -> int:
@@ -92,7 +86,7 @@ def main() -> int:
     p.add_argument("--top", type=int, default=10)
     a = p.parse_args()
     try:
-        (report_steps if a.what == "steps" else report_tests)(a.build, a.top)
+        report(a.build, a.what, a.top)
     except Exception as e:  # a report is never what fails a stage
         print(f"build_report: no report ({type(e).__name__}: {e})")
     return 0
