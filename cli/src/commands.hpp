@@ -23,5 +23,6 @@ Action register_sphere2d_command(CLI::App& app);
 Action register_planners_command(CLI::App& app);
 Action register_sph_command(CLI::App& app);
 Action register_sim_command(CLI::App& app);
+Action register_scen_command(CLI::App& app);
 
 }  // namespace hpcplan::cli

@@ -2,23 +2,31 @@
 
 #include "hpcplan/cli/number_options.hpp"
 #include "hpcplan/core/atomic_file.hpp"
+#include "hpcplan/core/error.hpp"
 #include "hpcplan/dense/dense_checkpoint.hpp"
+#include "hpcplan/env/occupancy_io.hpp"
 #include "hpcplan/io/grid_report_json.hpp"
 
 namespace hpcplan::cli {
 
 void add_grid_options(CLI::App* cmd, GridArgs& a) {
   auto& p = a.problem;
-  add_number(cmd, "--dims", p.dims, "Dimensions, 1..16", 1, 16)->required();
+  a.dims_option = add_number(cmd, "--dims", p.dims, "Dimensions, 1..16 (required without --map)", 1, 16);
+  cmd->add_option("--map", a.map,
+                  "Plan on this occupancy file instead of GOG: a MovingAI .map (8-connected, no "
+                  "corner cutting), a .3dmap voxel map (26-connected) or a NumPy .npy array "
+                  "(bool/uint8, nonzero = blocked, 1..16 dimensions); --start/--goal in its "
+                  "coordinates, x first (x = a .map's column, an array's last axis)")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--algo", a.algo,
                   "Planner (hpcplan planners --world grid): " + planner_names("grid"))
       ->capture_default_str();
   a.weight_option = add_param(cmd, "weight", a.weight)->capture_default_str();
   cmd->add_option("--heuristic", a.heuristic, "lattice (exact free-space cost) | euclidean")
       ->capture_default_str();
-  add_number(cmd, "--seed", p.gog.seed, "GOG seed")->capture_default_str();
-  add_number(cmd, "--extent", p.extent, "Lattice states per axis, 2..65535", 2, 65535)
-      ->capture_default_str();
+  a.gog_options.push_back(add_number(cmd, "--seed", p.gog.seed, "GOG seed")->capture_default_str());
+  a.gog_options.push_back(add_number(cmd, "--extent", p.extent, "Lattice states per axis, 2..65535", 2, 65535)
+      ->capture_default_str());
   cmd->add_option("--start", a.start, "Start state c1,c2,... (default: corner 0, adjusted)");
   cmd->add_option("--goal", a.goal, "Goal state (default: corner extent-1, adjusted)");
   add_param(cmd, "max_states", a.options.max_states)->capture_default_str();
@@ -29,15 +37,18 @@ void add_grid_options(CLI::App* cmd, GridArgs& a) {
   add_param(cmd, "memory_budget", a.options.memory_budget)->capture_default_str();
   add_param(cmd, "slab_layers", a.options.slab_layers)->capture_default_str();
   add_param(cmd, "contiguous_slabs", a.options.contiguous_slabs);
-  cmd->add_option("--connectivity", a.connectivity, "seed (1 or 2 axes) | full (d <= 4)")
-      ->capture_default_str();
-  add_number(cmd, "--threshold", p.gog.threshold, "GOG threshold c_v (0 = from --density)", 0, 49)
-      ->capture_default_str();
-  add_number(cmd, "--density", p.gog.density,
+  a.connectivity_option =
+      cmd->add_option("--connectivity", a.connectivity,
+                      "seed (1 or 2 axes) | full (d <= 4); with --map: the format's own (seed "
+                      "for .map and .npy, full for .3dmap)")
+          ->capture_default_str();
+  a.gog_options.push_back(add_number(cmd, "--threshold", p.gog.threshold, "GOG threshold c_v (0 = from --density)", 0, 49)
+      ->capture_default_str());
+  a.gog_options.push_back(add_number(cmd, "--density", p.gog.density,
              "Blocked fraction aimed at by the automatic threshold", 0, 1)
-      ->capture_default_str();
-  add_number(cmd, "--gog-shift-p", p.gog.shift_p, "GOG b_p", 0, 63)->capture_default_str();
-  add_number(cmd, "--gog-shift-v", p.gog.shift_v, "GOG b_v", 0, 61)->capture_default_str();
+      ->capture_default_str());
+  a.gog_options.push_back(add_number(cmd, "--gog-shift-p", p.gog.shift_p, "GOG b_p", 0, 63)->capture_default_str());
+  a.gog_options.push_back(add_number(cmd, "--gog-shift-v", p.gog.shift_v, "GOG b_v", 0, 61)->capture_default_str());
   const char* ckpt = "Checkpoints (dense engine: --algo bfs or dijkstra)";
   cmd->add_option("--checkpoint", a.options.checkpoint,
                   "Write the search's state to FILE (FILE.r<rank> per rank under mpirun) at a "
@@ -55,6 +66,23 @@ void add_grid_options(CLI::App* cmd, GridArgs& a) {
   cmd->add_option("--output", a.output, "Also write the JSON result to this file (atomically)");
 }
 
+LoadedMap load_map(const std::string& path, const std::optional<std::vector<int>>& start,
+                   Connectivity fallback) {
+  const env::MapFormat format = env::map_format_of(path);
+  auto grid = std::make_shared<OccupancyGrid>(env::load_occupancy(path));
+  // A start in a .map's water plans over the water: its own class of cells.
+  if (format == env::MapFormat::movingai && start && grid->inside(*start) &&
+      !grid->is_free(*start)) {
+    auto water = std::make_shared<OccupancyGrid>(env::load_occupancy(path, env::Terrain::water));
+    if (water->is_free(*start)) grid = std::move(water);
+  }
+  LoadedMap m;
+  m.grid = std::move(grid);
+  const std::string_view own = env::published_connectivity(format);
+  m.connectivity = own.empty() ? fallback : parse_connectivity(own);
+  return m;
+}
+
 void prepare_grid_run(GridArgs& a, int rank, int ranks, const RunControl& control) {
   a.options.algorithm = parse_grid_algorithm(a.algo);
   a.options.heuristic = parse_heuristic(a.heuristic);
@@ -64,6 +92,24 @@ void prepare_grid_run(GridArgs& a, int rank, int ranks, const RunControl& contro
   a.options.jump_points = !a.no_jump_points;
   if (!a.start.empty()) a.problem.start = parse_coordinates(a.start, "--start");
   if (!a.goal.empty()) a.problem.goal = parse_coordinates(a.goal, "--goal");
+  const bool dims_given = a.dims_option != nullptr && a.dims_option->count() > 0;
+  if (!a.map.empty()) {
+    for (const CLI::Option* o : a.gog_options)
+      if (o != nullptr && o->count() > 0)
+        throw InputError(o->get_name() + " describes the GOG field; --map plans on the map's own "
+                                         "obstacles");
+    const bool chosen = a.connectivity_option != nullptr && a.connectivity_option->count() > 0;
+    LoadedMap m = load_map(a.map, a.problem.start, a.problem.connectivity);
+    if (dims_given && a.problem.dims != m.grid->dims())
+      throw InputError("--dims " + std::to_string(a.problem.dims) + " but '" + a.map + "' has " +
+                       std::to_string(m.grid->dims()) + " dimensions");
+    GridProblem p = occupancy_problem(m.grid, chosen ? a.problem.connectivity : m.connectivity);
+    p.start = a.problem.start;
+    p.goal = a.problem.goal;
+    a.problem = std::move(p);
+  } else if (a.dims_option != nullptr && !dims_given) {
+    throw InputError("--dims is required (or --map FILE to plan on a map)");
+  }
   if (!a.output.empty()) require_writable_destination(a.output, "--output");
   a.options.cancel = control.cancel;
   if (!a.options.checkpoint.empty()) {

@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   hpcplan::cli::Action planners = hpcplan::cli::register_planners_command(app);
   hpcplan::cli::Action sph = hpcplan::cli::register_sph_command(app);
   hpcplan::cli::Action sim = hpcplan::cli::register_sim_command(app);
+  hpcplan::cli::Action scen = hpcplan::cli::register_scen_command(app);
   // Bad input is detected identically on every rank before any communication, so every rank
   // returns and only rank 0 speaks.
   try {
@@ -66,6 +67,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("planners")) return planners(context);
     if (app.got_subcommand("sph")) return sph(context);
     if (app.got_subcommand("sim")) return sim(context);
+    if (app.got_subcommand("scen")) return scen(context);
     return root ? report(hpcplan::kExitBadInput, "no subcommand given") : hpcplan::kExitBadInput;
   } catch (const hpcplan::InputError& e) {
     return root ? report(hpcplan::kExitBadInput, e.what()) : hpcplan::kExitBadInput;

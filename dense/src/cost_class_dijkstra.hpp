@@ -56,7 +56,7 @@ struct ClassEntry {
 template <int D, int K, class Kernel>
 class CostClassDijkstra {
  public:
-  CostClassDijkstra(const GogField& field, const Query& q, SlabTransport& tr,
+  CostClassDijkstra(const ObstacleSource& field, const Query& q, SlabTransport& tr,
                     const TileLayout& layout, const FreeWindows& windows, const Kernel& kernel,
                     const SlabMap& slabs)
       : field_(field),
@@ -563,7 +563,7 @@ class CostClassDijkstra {
     return path;
   }
 
-  const GogField& field_;
+  ObstacleSource field_;
   const Query& q_;
   SlabTransport& tr_;
   const TileLayout& layout_;

@@ -28,14 +28,16 @@ constexpr std::uint64_t kMaxSquareTable = std::uint64_t{32} << 20;
 
 using detail::max_word_steps;
 
-int in_tile_axes(const GogField& field, const Query& q) {
+int in_tile_axes(const ObstacleSource& field, const Query& q) {
   const int dims = field.dims();
   if (dims == 1) return 1;
+  // An occupancy table is 9 words per tile either way: 8 x 8 tiles, the better shape.
+  if (field.is_occupancy()) return 2;
   // Rows only where they are compiled for (wide 2D and 3D lattices); from 4D a lattice wide
   // enough to need them does not fit any budget anyway.
   if (dims > 3) return 2;
   const TileLayout square(dims, field.extent(), 2);
-  return FreeWindows::table_bytes(square, field.threshold(), max_word_steps(q, dims)) <=
+  return FreeWindows::table_bytes(field, square, max_word_steps(q, dims)) <=
                  kMaxSquareTable
              ? 2
              : 1;
@@ -43,7 +45,7 @@ int in_tile_axes(const GogField& field, const Query& q) {
 
 }  // namespace
 
-std::uint64_t planned_bytes(const GogField& field, const Query& q, int ranks) {
+std::uint64_t planned_bytes(const ObstacleSource& field, const Query& q, int ranks) {
   const int dims = field.dims();
   if (!TileLayout::fits(dims, field.extent(), in_tile_axes(field, q)))
     return std::numeric_limits<std::uint64_t>::max();
@@ -55,7 +57,8 @@ std::uint64_t planned_bytes(const GogField& field, const Query& q, int ranks) {
                                                std::max(1, q.threads), q.block_layers)
                                 .store_tiles);
   std::uint64_t bytes =
-      FreeWindows::table_bytes(layout, field.threshold(), max_word_steps(q, dims));
+      FreeWindows::table_bytes(field, layout, max_word_steps(q, dims));
+  if (bytes == std::numeric_limits<std::uint64_t>::max()) return bytes;
   if (q.algorithm == Algorithm::bfs) {
     bytes += detail::LevelBfs<2, 2, detail::SeedKernel<2, 2>>::store_bytes(tiles);
   } else {
@@ -78,7 +81,7 @@ void require_compiled(int dims) {
                      std::to_string(dims) + "; use --engine sparse");
 }
 
-Result search(const GogField& field, const Query& asked, SlabTransport& tr) {
+Result search(const ObstacleSource& field, const Query& asked, SlabTransport& tr) {
   // A build configured with -DHPCPLAN_DENSE_DIMS=N < 16: every rank runs the same build, so
   // all refuse together.
   require_compiled(field.dims());

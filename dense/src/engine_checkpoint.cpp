@@ -43,16 +43,23 @@ std::pair<std::string, std::string> first_difference(const std::string& a, const
 
 }  // namespace
 
-std::string run_identity(const GogField& field, const Query& q, const SlabMap& slabs) {
-  const GogParams& g = field.params();
+std::string run_identity(const ObstacleSource& field, const Query& q, const SlabMap& slabs) {
   std::ostringstream o;
   o << "engine = " << (q.algorithm == Algorithm::bfs ? "bfs" : "dijkstra") << "\n"
     << "dims = " << field.dims() << "\n"
-    << "extent = " << field.extent() << "\n"
-    << "seed = " << g.seed << "\n"
-    << "threshold = " << field.threshold() << "\n"
-    << "gog shifts = " << g.shift_p << "," << g.shift_v << "\n"
-    << "connectivity = " << (q.connectivity == Connectivity::full ? "full" : "seed") << "\n"
+    << "extent = " << field.extent() << "\n";
+  if (field.is_gog()) {
+    const GogParams& g = field.gog().params();
+    o << "seed = " << g.seed << "\n"
+      << "threshold = " << field.gog().threshold() << "\n"
+      << "gog shifts = " << g.shift_p << "," << g.shift_v << "\n";
+  } else {
+    // The grid's shape and bits: a restart on another map (or an edited one) is refused.
+    const OccupancyGrid& grid = field.occupancy();
+    o << "occupancy = " << coords(grid.shape()) << "\n"
+      << "occupancy checksum = " << grid.checksum() << "\n";
+  }
+  o << "connectivity = " << (q.connectivity == Connectivity::full ? "full" : "seed") << "\n"
     << "start = " << coords(q.start) << "\n"
     << "goal = " << coords(q.goal) << "\n";
   // BFS always keeps what its walk back needs; Dijkstra's --path adds each state's class.

@@ -12,7 +12,7 @@
 namespace hpcplan::dense::detail {
 
 // The problem and layout a checkpoint is valid for, one "name = value" line each.
-std::string run_identity(const GogField& field, const Query& q, const SlabMap& slabs);
+std::string run_identity(const ObstacleSource& field, const Query& q, const SlabMap& slabs);
 
 // Writes `payload` after `identity` into `path` atomically (RunError naming the file if it
 // cannot be written).

@@ -167,7 +167,7 @@ std::vector<T> gather_ranks(SlabTransport& tr, T v) {
 // Blocks of about this many per worker when block_layers is left to the engine (< 0).
 inline constexpr int kBlocksPerWorker = 4;
 
-inline SlabMap plan_slabs(const GogField& field, const TileLayout& layout, int rank, int ranks,
+inline SlabMap plan_slabs(const ObstacleSource& field, const TileLayout& layout, int rank, int ranks,
                           int threads, int block_layers) {
   SlabMap s;
   s.rank = rank;
@@ -265,7 +265,7 @@ inline std::vector<std::array<int, kMaxDims>> move_offsets(int dims, Connectivit
 
 // Whether from -> from + offset is a legal move, from the field formula alone (every corner of
 // the spanned unit cube free, inside the box); its axis count, or 0.
-inline int legal_move(const GogField& field, const int* from, const std::array<int, kMaxDims>& o) {
+inline int legal_move(const ObstacleSource& field, const int* from, const std::array<int, kMaxDims>& o) {
   const int dims = field.dims();
   int axes[kMaxDims], k = 0;
   for (int a = 0; a < dims; ++a)

@@ -45,7 +45,7 @@ struct TableKernel {
 };
 
 template <int D, int K, class Kernel>
-Result run_engine(const GogField& field, const Query& q, SlabTransport& tr,
+Result run_engine(const ObstacleSource& field, const Query& q, SlabTransport& tr,
                   const TileLayout& layout, const FreeWindows& windows, const Kernel& kernel,
                   const SlabMap& slabs) {
   if (q.algorithm == Algorithm::bfs) {
@@ -57,7 +57,7 @@ Result run_engine(const GogField& field, const Query& q, SlabTransport& tr,
 }
 
 template <int D, int K>
-Result run_shape(const GogField& field, const Query& q, SlabTransport& tr) {
+Result run_shape(const ObstacleSource& field, const Query& q, SlabTransport& tr) {
   const TileLayout layout(D, field.extent(), K);
   const FreeWindows windows(field, layout, max_word_steps(q, D));
   const SlabMap slabs =
@@ -106,7 +106,7 @@ Result run_shape(const GogField& field, const Query& q, SlabTransport& tr) {
 
 // The engine for D-dimensional lattices with k axes inside a tile (1 or 2; 2 from 4D on).
 template <int D>
-Result run_dims(const GogField& field, const Query& q, SlabTransport& tr, int k) {
+Result run_dims(const ObstacleSource& field, const Query& q, SlabTransport& tr, int k) {
   if constexpr (D == 1) {
     return run_shape<1, 1>(field, q, tr);
   } else if constexpr (D <= 3) {
@@ -117,7 +117,7 @@ Result run_dims(const GogField& field, const Query& q, SlabTransport& tr, int k)
 }
 
 #define HPCPLAN_DENSE_EXTERN_DIMS(d) \
-  extern template Result run_dims<d>(const GogField&, const Query&, SlabTransport&, int);
+  extern template Result run_dims<d>(const ObstacleSource&, const Query&, SlabTransport&, int);
 HPCPLAN_DENSE_EXTERN_DIMS(1)
 HPCPLAN_DENSE_EXTERN_DIMS(2)
 HPCPLAN_DENSE_EXTERN_DIMS(3)

@@ -1,6 +1,10 @@
 #include "hpcplan/dense/free_windows.hpp"
 
+#include <climits>
+#include <limits>
 #include <stdexcept>
+
+#include "hpcplan/core/error.hpp"
 
 namespace hpcplan::dense {
 namespace {
@@ -30,26 +34,49 @@ std::uint64_t positions(const TileLayout& layout) {
   return layout.in_tile_axes() == 2 ? p0 * (static_cast<std::uint64_t>(layout.tiles(1)) + 2) : p0;
 }
 
+// An occupancy table's padded tile positions (every axis padded by one tile each side), or 0
+// when 9 words per position would pass the kernels' int tau.
+std::uint64_t padded_positions(const TileLayout& layout) {
+  std::uint64_t n = 1;
+  for (int a = 0; a < layout.dims(); ++a) {
+    n *= static_cast<std::uint64_t>(layout.tiles(a)) + 2;
+    if (n * FreeWindows::kWindows > static_cast<std::uint64_t>(INT_MAX)) return 0;
+  }
+  return n;
+}
+
 }  // namespace
 
-std::uint64_t FreeWindows::table_bytes(const TileLayout& layout, int threshold,
+std::uint64_t FreeWindows::table_bytes(const ObstacleSource& field, const TileLayout& layout,
                                        int max_word_steps) {
-  const Range r = tau_range(layout, threshold, max_word_steps);
+  if (field.is_occupancy()) {
+    const std::uint64_t n = padded_positions(layout);
+    return n == 0 ? std::numeric_limits<std::uint64_t>::max() : n * kWindows * sizeof(Word);
+  }
+  const Range r = tau_range(layout, field.gog().threshold(), max_word_steps);
   return positions(layout) * kWindows * static_cast<std::uint64_t>(r.tau_max - r.tau_min + 1) *
          sizeof(Word);
 }
 
-FreeWindows::FreeWindows(const GogField& field, const TileLayout& layout, int max_word_steps)
+FreeWindows::FreeWindows(const ObstacleSource& field, const TileLayout& layout, int max_word_steps)
     : layout_(layout),
       dims_(layout.dims()),
       extent_(layout.extent()),
       in_tile_axes_(layout.in_tile_axes()),
       tiles1_(layout.in_tile_axes() == 2 ? layout.tiles(1) : 1),
-      threshold_(field.threshold()) {
+      threshold_(field.is_gog() ? field.gog().threshold() : 0) {
+  if (field.is_occupancy()) {
+    build_occupancy(field.occupancy(), layout);
+    return;
+  }
   const Range r = tau_range(layout, threshold_, max_word_steps);
   out_of_box_ = r.out_of_box;
   tau_offset_ = -r.tau_min;
   range_ = r.tau_max - r.tau_min + 1;
+  build_gog(field.gog(), layout);
+}
+
+void FreeWindows::build_gog(const GogField& field, const TileLayout& layout) {
   const int dims = layout.dims(), extent = layout.extent();
   levels_.assign(dims, {});
   for (int a = 0; a < dims; ++a) {
@@ -104,6 +131,81 @@ FreeWindows::FreeWindows(const GogField& field, const TileLayout& layout, int ma
         }
       }
     }
+}
+
+namespace {
+
+// Window masks from a tile's own mask and its neighbours' (bit x + 8y of an 8 x 8 tile, or bit
+// x of a row): cell p + offset, for an offset of -1, 0 or +1 along one in-tile axis.
+Word shift_x(Word centre, Word next, int o, int in_tile_axes) {
+  if (o == 0) return centre;
+  if (in_tile_axes == 1) return o > 0 ? (centre >> 1) | (next << 63) : (centre << 1) | (next >> 63);
+  return o > 0 ? ((centre >> 1) & ~kColumn7) | ((next & kColumn0) << 7)
+               : ((centre << 1) & ~kColumn0) | ((next & kColumn7) >> 7);
+}
+Word shift_y(Word centre, Word next, int o) {
+  if (o == 0) return centre;
+  return o > 0 ? (centre >> 8) | (next << 56) : (centre << 8) | (next >> 56);
+}
+
+}  // namespace
+
+void FreeWindows::build_occupancy(const OccupancyGrid& grid, const TileLayout& layout) {
+  occupancy_ = true;
+  range_ = 1;
+  tau_offset_ = 0;
+  const int dims = layout.dims(), k = layout.in_tile_axes();
+  const std::uint64_t n = padded_positions(layout);
+  if (n == 0)
+    throw InputError("the occupancy grid is too large for the dense engine's window table; use "
+                     "--engine sparse");
+  for (int a = 0; a < dims; ++a)
+    padded_stride_[a] = a == 0 ? 1 : padded_stride_[a - 1] * (layout.tiles(a - 1) + 2);
+  // Each tile's own free mask, over the padded grid (zero outside).
+  std::vector<Word> own(n, 0);
+  std::array<int, kMaxDims> t{};
+  const std::uint64_t tiles = layout.tile_count();
+  const int row_bits = k == 2 ? 8 : 64;
+  for (std::uint64_t i = 0; i < tiles; ++i) {
+    layout.tile_coords(i, t.data());
+    // The tile's first cell; a tile past the shape along a word axis stays blocked.
+    int c[kMaxDims];
+    bool outside = false;
+    for (int a = 0; a < dims; ++a) {
+      c[a] = t[a] * layout.side(a);
+      outside = outside || c[a] >= grid.size(a);
+    }
+    if (outside) continue;
+    Word m = 0;
+    const int rows = k == 2 ? 8 : 1;
+    for (int y = 0; y < rows; ++y) {
+      if (k == 2 && c[1] + y >= grid.size(1)) break;
+      int cy[kMaxDims];
+      std::copy(c, c + dims, cy);
+      if (k == 2) cy[1] += y;
+      // The tile's cells of this row that lie inside the grid's width.
+      const int cells = std::min(row_bits, grid.size(0) - c[0]);
+      m |= grid.bits(grid.index(cy), cells) << (row_bits * y);
+    }
+    std::int64_t pos = 0;
+    for (int a = 0; a < dims; ++a) pos += (t[a] + 1) * padded_stride_[a];
+    own[static_cast<std::size_t>(pos)] = m;
+  }
+  table_.assign(n * kWindows, 0);
+  for (std::uint64_t i = 0; i < tiles; ++i) {
+    layout.tile_coords(i, t.data());
+    std::int64_t pos = 0;
+    for (int a = 0; a < dims; ++a) pos += (t[a] + 1) * padded_stride_[a];
+    const std::int64_t s0 = padded_stride_[0], s1 = k == 2 ? padded_stride_[1] : 0;
+    Word* out = table_.data() + pos * kWindows;
+    for (int w = 0; w < kWindows; ++w) {
+      const int o0 = w % 3 - 1, o1 = w / 3 - 1;
+      if (k == 1 && o1 != 0) continue;
+      const Word near = shift_x(own[pos], own[pos + o0 * s0], o0, k);
+      const Word far = o1 == 0 ? 0 : shift_x(own[pos + o1 * s1], own[pos + o0 * s0 + o1 * s1], o0, k);
+      out[w] = k == 2 ? shift_y(near, far, o1) : near;
+    }
+  }
 }
 
 }  // namespace hpcplan::dense

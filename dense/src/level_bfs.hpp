@@ -24,7 +24,7 @@ namespace hpcplan::dense::detail {
 template <int D, int K, class Kernel>
 class LevelBfs {
  public:
-  LevelBfs(const GogField& field, const Query& q, SlabTransport& tr, const TileLayout& layout,
+  LevelBfs(const ObstacleSource& field, const Query& q, SlabTransport& tr, const TileLayout& layout,
            const FreeWindows& windows, const Kernel& kernel, const SlabMap& slabs)
       : field_(field),
         q_(q),
@@ -479,7 +479,7 @@ class LevelBfs {
     return path;
   }
 
-  const GogField& field_;
+  ObstacleSource field_;
   const Query& q_;
   SlabTransport& tr_;
   const TileLayout& layout_;

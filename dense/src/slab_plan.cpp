@@ -5,7 +5,32 @@
 
 namespace hpcplan::dense {
 
-std::vector<double> free_states_per_layer(const GogField& field, const TileLayout& layout) {
+namespace {
+
+// An occupancy grid's free cells per lattice layer of its last axis: each layer is one run of
+// its bits.
+std::vector<double> occupancy_free_per_layer(const OccupancyGrid& grid, const TileLayout& layout) {
+  const int last = grid.dims() - 1;
+  std::vector<double> layers(layout.layers(), 0.0);
+  const int side = layout.side(last);
+  if (grid.dims() == 1) {
+    for (int z = 0; z < grid.size(0); ++z)
+      if (grid.free_at(static_cast<std::uint64_t>(z))) layers[z / side] += 1.0;
+    return layers;
+  }
+  const auto layer_bits = static_cast<std::uint64_t>(grid.stride(last));
+  for (int z = 0; z < grid.size(last); ++z) {
+    const std::uint64_t begin = static_cast<std::uint64_t>(z) * layer_bits;
+    layers[z / side] += static_cast<double>(grid.count_free(begin, begin + layer_bits));
+  }
+  return layers;
+}
+
+}  // namespace
+
+std::vector<double> free_states_per_layer(const ObstacleSource& source, const TileLayout& layout) {
+  if (source.is_occupancy()) return occupancy_free_per_layer(source.occupancy(), layout);
+  const GogField& field = source.gog();
   const int dims = field.dims(), extent = field.extent(), last = dims - 1;
   // Cells of the first d - 1 axes by level sum.
   std::vector<double> sums(1, 1.0);

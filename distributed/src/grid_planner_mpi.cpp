@@ -2,6 +2,7 @@
 
 #include "hpcplan/distributed/mpi_slab_transport.hpp"
 
+#include <optional>
 #include <algorithm>
 #include <thread>
 
@@ -70,7 +71,7 @@ void validate(const DistGridOptions& o, int extent, int ranks, int dims) {
 namespace {
 
 template <int W>
-void run_distributed(const GogField& field, const GridProblem& problem, const GridSearchOptions& o,
+void run_distributed(const ObstacleSource& field, const GridProblem& problem, const GridSearchOptions& o,
                      const DistGridOptions& dist, const mpi::Communicator& comm,
                      GridReport& report) {
   LatticeGraph<W> graph(field, problem.connectivity);
@@ -137,7 +138,8 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
   hpcplan::validate(problem, options);
   validate(dist, problem.extent, comm.size(), problem.dims);
   Stopwatch setup;
-  const GogField field(problem.dims, problem.extent, problem.gog);
+  std::optional<GogField> gog;
+  const ObstacleSource field = obstacles_of(problem, gog);
   GridReport report = prepare_grid_report(problem, options, field, comm.ranks_on_node());
   report.result.setup_ms = setup.milliseconds();
   GridDistribution& dr = report.distribution;

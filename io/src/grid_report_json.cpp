@@ -114,11 +114,18 @@ nlohmann::json to_json(const GridReport& report, bool include_path) {
   j["weight"] = o.weight;
   j["heuristic"] = o.heuristic;
   j["connectivity"] = p.connectivity;
-  j["seed"] = p.seed;
+  j["obstacles"] = p.obstacles;
   j["extent"] = p.extent;
-  j["threshold"] = p.threshold;
-  j["gog_shift_p"] = p.shift_p;
-  j["gog_shift_v"] = p.shift_v;
+  if (p.obstacles == "gog") {
+    j["seed"] = p.seed;
+    j["threshold"] = p.threshold;
+    j["gog_shift_p"] = p.shift_p;
+    j["gog_shift_v"] = p.shift_v;
+  } else {
+    j["map"] = p.map;
+    j["shape"] = p.shape;  // x first
+    j["map_checksum"] = p.map_checksum;
+  }
   j["blocked_fraction"] = p.blocked_fraction;
   j["start"] = p.start;
   j["goal"] = p.goal;
@@ -178,10 +185,20 @@ std::string to_summary(const GridReport& report) {
   };
   std::ostringstream o;
   char line[256];
-  o << "hpcplan grid: " << op.algorithm << " in " << p.dims << "D, extent " << p.extent << ", seed "
-    << p.seed << ", " << d.ranks << " rank(s)\n";
-  std::snprintf(line, sizeof line, "  field      threshold %d, %.1f%% of states blocked\n",
-                p.threshold, 100.0 * p.blocked_fraction);
+  if (p.obstacles == "gog") {
+    o << "hpcplan grid: " << op.algorithm << " in " << p.dims << "D, extent " << p.extent
+      << ", seed " << p.seed << ", " << d.ranks << " rank(s)\n";
+    std::snprintf(line, sizeof line, "  field      threshold %d, %.1f%% of states blocked\n",
+                  p.threshold, 100.0 * p.blocked_fraction);
+  } else {
+    std::string shape;
+    for (std::size_t a = 0; a < p.shape.size(); ++a)
+      shape += (a ? " x " : "") + std::to_string(p.shape[a]);
+    o << "hpcplan grid: " << op.algorithm << " in " << p.dims << "D on " << p.map << " ("
+      << p.obstacles << ", " << shape << "), " << d.ranks << " rank(s)\n";
+    std::snprintf(line, sizeof line, "  map        %s connectivity, %.1f%% of cells blocked\n",
+                  p.connectivity.c_str(), 100.0 * p.blocked_fraction);
+  }
   o << line;
   o << "  start      " << coords(p.start) << (p.start_adjusted ? " (adjusted)" : "") << "\n";
   o << "  goal       " << coords(p.goal) << (p.goal_adjusted ? " (adjusted)" : "") << "\n";

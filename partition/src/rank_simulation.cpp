@@ -1,5 +1,6 @@
 #include "hpcplan/partition/rank_simulation.hpp"
 
+#include <optional>
 #include <absl/container/flat_hash_set.h>
 
 #include <algorithm>
@@ -107,7 +108,7 @@ class OwnershipCensus {
 };
 
 template <int W>
-void run(const GogField& field, const GridProblem& problem, const GridSearchOptions& o,
+void run(const ObstacleSource& field, const GridProblem& problem, const GridSearchOptions& o,
          const std::vector<int>& shifts, RankSimulation& sim) {
   GridReport& report = sim.serial;
   LatticeGraph<W> graph(field, problem.connectivity);
@@ -183,7 +184,8 @@ RankSimulation simulate_ranks(const GridProblem& problem, const GridSearchOption
       sim.splits.push_back(std::move(s));
     }
   Stopwatch setup;
-  const GogField field(problem.dims, problem.extent, problem.gog);
+  std::optional<GogField> gog;
+  const ObstacleSource field = obstacles_of(problem, gog);
   sim.serial = prepare_grid_report(problem, options, field, 1);
   sim.serial.result.setup_ms = setup.milliseconds();
   switch (sim.serial.options.key_words) {

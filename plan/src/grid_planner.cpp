@@ -12,9 +12,10 @@
 namespace hpcplan {
 
 // The instantiations grid_planner_impl.hpp declares extern.
-template GridReport solve_grid_with<search::DefaultVisitedMap>(const GogField&, const GridProblem&,
+template GridReport solve_grid_with<search::DefaultVisitedMap>(const ObstacleSource&,
+                                                               const GridProblem&,
                                                                const GridSearchOptions&, double);
-template GridReport solve_grid_with<search::StampedDensePolicy>(const GogField&,
+template GridReport solve_grid_with<search::StampedDensePolicy>(const ObstacleSource&,
                                                                 const GridProblem&,
                                                                 const GridSearchOptions&, double);
 
@@ -25,8 +26,14 @@ bool dense_visited_fits(int dims, int extent) {
   return layout.words() == 1 && layout.bits() * dims <= kDenseVisitedBits;
 }
 
+ObstacleSource obstacles_of(const GridProblem& problem, std::optional<GogField>& gog) {
+  if (problem.occupancy) return *problem.occupancy;
+  return gog.emplace(problem.dims, problem.extent, problem.gog);
+}
+
 GridReport solve_grid(const GridProblem& problem, const GridSearchOptions& options) {
   validate(problem, options);
+  if (problem.occupancy) return solve_grid(*problem.occupancy, problem, options);
   Stopwatch setup;
   const GogField field(problem.dims, problem.extent, problem.gog);
   const double field_ms = setup.milliseconds();
@@ -35,7 +42,7 @@ GridReport solve_grid(const GridProblem& problem, const GridSearchOptions& optio
   return report;
 }
 
-GridReport solve_grid(const GogField& field, const GridProblem& problem,
+GridReport solve_grid(const ObstacleSource& field, const GridProblem& problem,
                       const GridSearchOptions& options) {
   validate(problem, options);
   {
@@ -69,7 +76,7 @@ int dense_threads(const GridSearchOptions& options, int ranks_sharing_memory) {
 
 namespace {
 
-dense::Query dense_query(const GogField&, const GridProblem& problem, const GridSearchOptions& o,
+dense::Query dense_query(const ObstacleSource&, const GridProblem& problem, const GridSearchOptions& o,
                          const GridReport& report, int ranks_sharing_memory) {
   dense::Query q;
   q.start = report.problem.start;
@@ -92,7 +99,7 @@ dense::Query dense_query(const GogField&, const GridProblem& problem, const Grid
 // Re-validates a returned path move by move with the lattice graph (the field formula, not the
 // dense engine's tables) and returns its length.
 template <int W>
-double validated_dense_path(const GogField& field, const GridProblem& problem,
+double validated_dense_path(const ObstacleSource& field, const GridProblem& problem,
                             const std::vector<std::vector<int>>& path) {
   const LatticeGraph<W> graph(field, problem.connectivity);
   std::vector<typename LatticeGraph<W>::State> states;
@@ -103,7 +110,7 @@ double validated_dense_path(const GogField& field, const GridProblem& problem,
 
 }  // namespace
 
-bool dense_fits(const GogField& field, const GridSearchOptions& options, const GridReport& report,
+bool dense_fits(const ObstacleSource& field, const GridSearchOptions& options, const GridReport& report,
                 int ranks) {
   dense::Query q;
   q.algorithm =
@@ -117,7 +124,7 @@ bool dense_fits(const GogField& field, const GridSearchOptions& options, const G
   return dense::planned_bytes(field, q, ranks) <= dense_memory_budget(options, report);
 }
 
-bool uses_dense_engine(const GogField& field, const GridSearchOptions& options,
+bool uses_dense_engine(const ObstacleSource& field, const GridSearchOptions& options,
                        const GridReport& report, int ranks) {
   if (options.engine == GridEngine::sparse) return false;
   if (options.algorithm != GridAlgorithm::bfs && options.algorithm != GridAlgorithm::dijkstra)
@@ -126,7 +133,7 @@ bool uses_dense_engine(const GogField& field, const GridSearchOptions& options,
   return field.dims() <= dense::compiled_dims() && dense_fits(field, options, report, ranks);
 }
 
-void run_dense(const GogField& field, const GridProblem& problem, const GridSearchOptions& options,
+void run_dense(const ObstacleSource& field, const GridProblem& problem, const GridSearchOptions& options,
                dense::SlabTransport& transport, int ranks_sharing_memory, GridReport& report) {
   dense::Query q = dense_query(field, problem, options, report, ranks_sharing_memory);
   if (transport.rank() != 0) q.progress_label.clear();  // one progress line per job
@@ -159,16 +166,24 @@ void run_dense(const GogField& field, const GridProblem& problem, const GridSear
 }
 
 GridReport prepare_grid_report(const GridProblem& problem, const GridSearchOptions& options,
-                               const GogField& field, int ranks_sharing_memory) {
+                               const ObstacleSource& field, int ranks_sharing_memory) {
   GridReport report;
   GridProblemReport& pr = report.problem;
   pr.dims = problem.dims;
   pr.extent = problem.extent;
-  pr.seed = problem.gog.seed;
-  pr.threshold = field.threshold();
   pr.blocked_fraction = field.blocked_fraction();
-  pr.shift_p = problem.gog.shift_p;
-  pr.shift_v = problem.gog.shift_v;
+  if (field.is_gog()) {
+    pr.seed = problem.gog.seed;
+    pr.threshold = field.gog().threshold();
+    pr.shift_p = problem.gog.shift_p;
+    pr.shift_v = problem.gog.shift_v;
+  } else {
+    const OccupancyGrid& grid = field.occupancy();
+    pr.obstacles = grid.format;
+    pr.map = grid.name;
+    pr.shape = grid.shape();
+    pr.map_checksum = grid.checksum();
+  }
   pr.connectivity = std::string(to_string(problem.connectivity));
   GridOptionsReport& op = report.options;
   op.algorithm = std::string(to_string(options.algorithm));
@@ -187,7 +202,10 @@ GridReport prepare_grid_report(const GridProblem& problem, const GridSearchOptio
       }
       return *given;
     }
+    // The nominal corner: all zeros, or each axis's last cell (a map's own sides).
     std::vector<int> nominal(problem.dims, corner);
+    if (corner > 0)
+      for (int a = 0; a < problem.dims; ++a) nominal[a] = field.size(a) - 1;
     auto free = adjust_to_free(field, nominal, direction, what);
     adjusted = free != nominal;
     return free;

@@ -101,6 +101,22 @@ namespace {
 void check_state(const std::optional<std::vector<int>>& s, const GridProblem& p,
                  std::string_view what) {
   if (!s) return;
+  if (p.occupancy) {
+    const std::vector<int>& shape = p.occupancy->shape();
+    if (s->size() != shape.size())
+      throw InputError(std::string(what) + " has " + std::to_string(s->size()) +
+                       " coordinates but the map has " + std::to_string(shape.size()) +
+                       " dimensions");
+    for (std::size_t a = 0; a < shape.size(); ++a)
+      if ((*s)[a] < 0 || (*s)[a] >= shape[a]) {
+        std::string box;
+        for (std::size_t b = 0; b < shape.size(); ++b)
+          box += (b ? " x [0, " : "[0, ") + std::to_string(shape[b] - 1) + "]";
+        throw InputError(std::string(what) + " (" + join_coordinates(*s) +
+                         ") is outside the map " + box);
+      }
+    return;
+  }
   if (static_cast<int>(s->size()) != p.dims)
     throw InputError(std::string(what) + " has " + std::to_string(s->size()) +
                      " coordinates but --dims is " + std::to_string(p.dims));
@@ -112,13 +128,25 @@ void check_state(const std::optional<std::vector<int>>& s, const GridProblem& p,
 
 }  // namespace
 
+GridProblem occupancy_problem(std::shared_ptr<const OccupancyGrid> grid,
+                              Connectivity connectivity) {
+  GridProblem p;
+  p.dims = grid->dims();
+  p.extent = grid->extent();
+  p.occupancy = std::move(grid);
+  p.connectivity = connectivity;
+  return p;
+}
+
 void validate(const GridProblem& p, const GridSearchOptions& o) {
+  if (p.occupancy && (p.dims != p.occupancy->dims() || p.extent != p.occupancy->extent()))
+    throw std::logic_error("GridProblem: dims and extent must be the occupancy grid's");
   if (p.dims < 1 || p.dims > kMaxDims)
     throw InputError("--dims must be in [1, 16], got " + std::to_string(p.dims));
   if (p.extent < 2 || p.extent > kMaxExtent)
     throw InputError("--extent must be in [2, 65535], got " + std::to_string(p.extent));
   if (p.connectivity == Connectivity::full && p.dims > kMaxFullConnectivityDims)
-    throw InputError("--connectivity full is limited to --dims <= 4 (3^d - 1 moves)");
+    throw InputError(p.occupancy ? "--connectivity full is limited to maps of at most 4 dimensions (3^d - 1 moves)" : "--connectivity full is limited to --dims <= 4 (3^d - 1 moves)");
   check_state(p.start, p, "--start");
   check_state(p.goal, p, "--goal");
   if (o.weight) {
@@ -167,13 +195,13 @@ void require_dense_for_checkpoints(const GridSearchOptions& o, int dims, bool de
       "one; give --engine dense (or a larger --memory-budget)");
 }
 
-std::vector<int> adjust_to_free(const GogField& field, std::vector<int> state, int direction,
+std::vector<int> adjust_to_free(const ObstacleSource& field, std::vector<int> state, int direction,
                                 std::string_view what) {
   const int d = field.dims();
   for (long step = 0; !field.is_free(state); ++step) {
     const int axis = static_cast<int>(step % d);
     state[axis] += direction;
-    if (state[axis] < 0 || state[axis] >= field.extent())
+    if (state[axis] < 0 || state[axis] >= field.size(axis))
       throw InputError("no free " + std::string(what) +
                        " found by advancing from the corner; choose it with --" +
                        std::string(what));

@@ -3,7 +3,10 @@
 // hpcplan.grid.solve): registered on a CLI11 command, read into the problem and the search's
 // options with the checks that go with them, and the report's finishing touches. The
 // executable adds its distributed and prediction options and --json (src/grid_command.cpp).
+#include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -21,10 +24,25 @@ struct GridArgs {
   std::string connectivity = "seed";
   std::string engine = "auto";
   std::string start, goal, output;
+  // --map FILE: plan on the occupancy grid of a .map, .3dmap or .npy instead of GOG.
+  std::string map;
   double weight = 2.0;
   bool no_jump_points = false;
   const CLI::Option* weight_option = nullptr;  // given or not (only weighted A* takes one)
+  const CLI::Option* dims_option = nullptr;
+  const CLI::Option* connectivity_option = nullptr;
+  std::vector<const CLI::Option*> gog_options;  // GOG's own (refused with --map)
 };
+
+// The occupancy grid of a map file for a run starting at `start` (a .map's water class when the
+// start stands in water), with the connectivity its published answers assume (seed or full;
+// a .npy's is the caller's `fallback`).
+struct LoadedMap {
+  std::shared_ptr<const OccupancyGrid> grid;
+  Connectivity connectivity = Connectivity::seed_pairs;
+};
+LoadedMap load_map(const std::string& path, const std::optional<std::vector<int>>& start,
+                   Connectivity fallback);
 
 // Registers the problem, search, checkpoint and output options on `command`.
 void add_grid_options(CLI::App* command, GridArgs& args);

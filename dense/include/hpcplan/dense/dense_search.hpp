@@ -33,7 +33,7 @@
 #include "hpcplan/core/stop.hpp"
 #include "hpcplan/dense/dense_checkpoint.hpp"
 #include "hpcplan/dense/slab_transport.hpp"
-#include "hpcplan/env/gog.hpp"
+#include "hpcplan/env/obstacle_source.hpp"
 #include "hpcplan/graph/lattice_graph.hpp"
 
 namespace hpcplan::dense {
@@ -90,7 +90,7 @@ struct Result : hpcplan::Result<std::vector<int>> {
 // The bytes a rank of `ranks` will allocate for this query before its lists grow (the store,
 // marks, window table and a first frontier reserve); the largest uint64 when the lattice has
 // more tiles than TileLayout::kMaxTiles.
-std::uint64_t planned_bytes(const GogField& field, const Query& query, int ranks);
+std::uint64_t planned_bytes(const ObstacleSource& field, const Query& query, int ranks);
 
 // The largest lattice dimension this build compiled the engine for: 16 unless it was configured
 // with -DHPCPLAN_DENSE_DIMS=N (search() refuses a higher one; --engine auto picks sparse there).
@@ -105,6 +105,6 @@ void require_compiled(int dims);
 // budget (one line naming both), before anything large is allocated, or if a rank's restart
 // checkpoint is refused (every rank throws it, with that rank's
 // message). RunError if a checkpoint cannot be written.
-Result search(const GogField& field, const Query& query, SlabTransport& transport);
+Result search(const ObstacleSource& field, const Query& query, SlabTransport& transport);
 
 }  // namespace hpcplan::dense

@@ -12,13 +12,20 @@
 // Cells outside the box are never free: in-tile neighbours past an edge read padded table rows
 // of zero masks, and a word-axis step out of the box moves tau to a value whose masks are zero.
 //
+// An occupancy grid is not separable, so its table holds the nine windows of every tile itself,
+// over the tile grid padded by one zero tile on each side of every axis: 9 words per tile.
+// The kernels read it through the same At: the row is the table's start, the stride 1, tau the
+// tile's padded position times 9, and a step along a word axis adds that axis's padded tile
+// stride times 9, landing on the neighbour tile's windows (zero past the box's edge). So the
+// kernels are the same code for both sources.
+//
 // Threads: immutable once built.
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "hpcplan/dense/tile_layout.hpp"
-#include "hpcplan/env/gog.hpp"
+#include "hpcplan/env/obstacle_source.hpp"
 
 namespace hpcplan::dense {
 
@@ -26,11 +33,14 @@ class FreeWindows {
  public:
   // max_word_steps: the most word axes one move's corner may step along (2 for the seed rule,
   // up to dims for full connectivity): it sets the range of tau the table covers.
-  FreeWindows(const GogField& field, const TileLayout& layout, int max_word_steps);
+  FreeWindows(const ObstacleSource& field, const TileLayout& layout, int max_word_steps);
 
   // The table's size for a layout, without building it (the engine picks rows over 8 x 8 tiles
   // when it would be too large).
-  static std::uint64_t table_bytes(const TileLayout& layout, int threshold, int max_word_steps);
+  // An occupancy grid's table fits only while its padded positions times 9 fit an int (the
+  // kernels' tau): the most a table may be is then about 17 GB.
+  static std::uint64_t table_bytes(const ObstacleSource& field, const TileLayout& layout,
+                                   int max_word_steps);
 
   // Windows: in-tile offsets (o0, o1) in {-1, 0, 1}; rows (one in-tile axis) fill only o1 = 0.
   static constexpr int window(int o0, int o1 = 0) { return (o0 + 1) + 3 * (o1 + 1); }
@@ -43,6 +53,7 @@ class FreeWindows {
     std::array<int, kMaxDims> minus{}, plus{};  // tau change of a step -1 / +1 along a word axis
   };
   [[gnu::always_inline]] void locate(const int* t, At& at) const {
+    if (occupancy_) return locate_occupancy(t, at);
     const int k = in_tile_axes_;
     const std::size_t pos = k == 2 ? static_cast<std::size_t>(t[0] + 1) * (tiles1_ + 2) + (t[1] + 1)
                                    : static_cast<std::size_t>(t[0] + 1);
@@ -68,6 +79,21 @@ class FreeWindows {
   std::uint64_t bytes() const { return table_.size() * sizeof(Word); }
 
  private:
+  void build_gog(const GogField& field, const TileLayout& layout);
+  void build_occupancy(const OccupancyGrid& grid, const TileLayout& layout);
+  void locate_occupancy(const int* t, At& at) const {
+    std::int64_t pos = 0;
+    for (int b = 0; b < dims_; ++b) pos += (t[b] + 1) * padded_stride_[b];
+    at.row = table_.data();
+    at.tau = static_cast<int>(pos * kWindows);
+    for (int b = in_tile_axes_; b < dims_; ++b) {
+      at.minus[b] = -static_cast<int>(padded_stride_[b] * kWindows);
+      at.plus[b] = static_cast<int>(padded_stride_[b] * kWindows);
+    }
+  }
+
+  bool occupancy_ = false;
+  std::array<std::int64_t, kMaxDims> padded_stride_{};  // occupancy: tiles, padded grid
   const TileLayout& layout_;
   int dims_, extent_, in_tile_axes_, tiles1_;
   int threshold_;

@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "hpcplan/dense/tile_layout.hpp"
-#include "hpcplan/env/gog.hpp"
+#include "hpcplan/env/obstacle_source.hpp"
 
 namespace hpcplan::dense {
 
 // Free lattice states in each tile layer (exact up to double rounding).
-std::vector<double> free_states_per_layer(const GogField& field, const TileLayout& layout);
+std::vector<double> free_states_per_layer(const ObstacleSource& field, const TileLayout& layout);
 
 // parts + 1 bounds 0 = b_0 <= b_1 <= ... <= b_parts = weights.size(): part j holds layers
 // [b_j, b_(j+1)), contiguous, with weights as equal as whole layers allow. Every part gets at

@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "hpcplan/env/gog.hpp"
+#include "hpcplan/env/occupancy_grid.hpp"
 #include "hpcplan/graph/lattice_cost.hpp"
 #include "hpcplan/graph/packed_key.hpp"
 
@@ -67,6 +68,39 @@ class GogCells2D {
   const std::uint8_t* x_levels_;
   const std::uint8_t* y_levels_;
   int threshold_;
+  int extent_;
+};
+
+// The cells of a 2D occupancy grid: one bit each. Cells past the grid's sides (inside the
+// square lattice of its larger side) are blocked.
+class OccupancyCells2D {
+ public:
+  explicit OccupancyCells2D(const OccupancyGrid& grid)
+      : grid_(grid),
+        words_(grid.words()),
+        row_bits_(grid.dims() == 2 ? static_cast<std::uint64_t>(grid.stride(1)) : 0),
+        width_(static_cast<unsigned>(grid.size(0))),
+        height_(grid.dims() == 2 ? static_cast<unsigned>(grid.size(1)) : 0),
+        extent_(grid.extent()) {
+    if (grid.dims() != 2) throw std::logic_error("OccupancyCells2D: the grid must be 2D");
+  }
+  int extent() const { return extent_; }
+  [[gnu::always_inline]] bool free(int x, int y) const {
+    if (static_cast<unsigned>(x) >= width_ || static_cast<unsigned>(y) >= height_) return false;
+    const std::uint64_t bit = static_cast<std::uint64_t>(y) * row_bits_ + static_cast<unsigned>(x);
+    return (words_[bit >> 6] >> (bit & 63)) & 1;
+  }
+  // The grid's own cell test (coordinates, not this class's bit arithmetic).
+  bool checked_free(int x, int y) const {
+    const int c[2] = {x, y};
+    return grid_.is_free(std::span<const int>(c, 2));
+  }
+
+ private:
+  const OccupancyGrid& grid_;
+  const std::uint64_t* words_;
+  std::uint64_t row_bits_;
+  unsigned width_, height_;
   int extent_;
 };
 

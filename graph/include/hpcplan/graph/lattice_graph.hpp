@@ -1,5 +1,6 @@
 #pragma once
-// The implicit lattice graph over a GOG field: vertices are generated on the fly, never stored.
+// The implicit lattice graph over an obstacle source (the GOG field, or an occupancy grid a
+// user brings): vertices are generated on the fly, never stored.
 //
 // Seed rule (seed 002 Algorithm 2): +-1 along one axis (cost 1), or along two distinct axes
 // (cost sqrt2) when both one-axis intermediate states are free. The one-axis neighbours are
@@ -8,18 +9,20 @@
 // the unit sub-cube spanned by the move is free (no corner cutting); for k = 2 this is the
 // seed rule.
 //
-// Validity during expansion is incremental: the GOG level sum of a neighbour differs from the
-// expanded state's in one or two axis terms, so a check is O(1) rather than O(d). Each such
-// evaluation of a state's validity counts as one collision check.
+// Validity during expansion is O(1) per neighbour either way: on GOG incremental (a neighbour's
+// level sum differs from the expanded state's in one or two axis terms), on an occupancy grid
+// one bit at the expanded state's bit index plus the move's stride. Each such evaluation of a
+// state's validity counts as one collision check. The source's kind is decided once per
+// expansion, outside the loops over moves.
 //
-// Threads: a graph belongs to one run (its check counter is a plain member); the GOG field it
+// Threads: a graph belongs to one run (its check counter is a plain member); the field it
 // reads may be shared.
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
 
-#include "hpcplan/env/gog.hpp"
+#include "hpcplan/env/obstacle_source.hpp"
 #include "hpcplan/graph/lattice_cost.hpp"
 #include "hpcplan/graph/packed_key.hpp"
 
@@ -41,17 +44,25 @@ class LatticeGraph {
   // region holds x's whole unit neighbourhood owns all of x's successors.
   static constexpr int kMoveRadius = 1;
 
-  LatticeGraph(const GogField& field, Connectivity connectivity)
+  LatticeGraph(const ObstacleSource& field, Connectivity connectivity)
       : field_(field),
         layout_(field.dims(), field.extent()),
         connectivity_(connectivity),
         dims_(field.dims()),
-        extent_(field.extent()),
-        threshold_(field.threshold()) {
+        extent_(field.extent()) {
     if (layout_.words() > W) throw std::logic_error("LatticeGraph: key width too small");
     if (connectivity == Connectivity::full && dims_ > kMaxFullConnectivityDims)
       throw std::logic_error("full connectivity is limited to d <= 4");
-    for (int a = 0; a < dims_; ++a) tables_[a] = field.level_table(a);
+    if (field.is_gog()) {
+      threshold_ = field.gog().threshold();
+      for (int a = 0; a < dims_; ++a) tables_[a] = field.gog().level_table(a);
+    } else {
+      grid_ = &field.occupancy();
+    }
+    for (int a = 0; a < dims_; ++a) {
+      size_[a] = field.size(a);
+      bit_stride_[a] = grid_ ? grid_->stride(a) : 0;
+    }
     if (connectivity == Connectivity::seed_pairs)
       build_seed_moves();
     else
@@ -59,7 +70,7 @@ class LatticeGraph {
   }
 
   const KeyLayout& layout() const { return layout_; }
-  const GogField& field() const { return field_; }
+  const ObstacleSource& field() const { return field_; }
   Connectivity connectivity() const { return connectivity_; }
   std::uint64_t collision_checks() const { return checks_; }
   std::size_t max_successors() const { return moves_.size(); }
@@ -92,7 +103,7 @@ class LatticeGraph {
   }
 
   // Independent re-validation for returned paths: recomputes everything from the GOG formula
-  // (not the level tables or the incremental sums). Returns the move's length, or -1 if a->b
+  // or the occupancy grid's cell test (not the level tables, incremental sums or bit strides). Returns the move's length, or -1 if a->b
   // is not a legal move between free states.
   double checked_edge_length(const State& a, const State& b) const {
     int ca[kMaxDims], cb[kMaxDims];
@@ -191,8 +202,10 @@ class LatticeGraph {
     return sum;
   }
 
+  // The seed rule on GOG: incremental level sums (the occupancy grid's version follows).
   template <class Emit>
   void expand_seed_rule(const State& x, Emit& emit) const {
+    if (grid_) return expand_seed_rule_bits(x, emit);
     int c[kMaxDims];
     const int sum = unpack_with_level_sum(x, c);
     // change[a][s]: level-sum change of stepping axis a by s (s=0: -1, s=1: +1); free1 marks
@@ -227,10 +240,48 @@ class LatticeGraph {
     checks_ += checks;
   }
 
+  // The seed rule on an occupancy grid: the same moves, in the same order, each target one bit.
+  template <class Emit>
+  void expand_seed_rule_bits(const State& x, Emit& emit) const {
+    int c[kMaxDims];
+    layout_.unpack(x, c);
+    const std::int64_t here = static_cast<std::int64_t>(grid_->index(c));
+    std::int64_t change[kMaxDims][2];
+    bool free1[kMaxDims][2];
+    std::uint64_t checks = 0;
+    Move id = 0;
+    constexpr LatticeCost kOne = LatticeCost::for_axes(1), kTwo = LatticeCost::for_axes(2);
+    for (int a = 0; a < dims_; ++a) {
+      for (int s = 0; s < 2; ++s, ++id) {
+        const int nc = c[a] + (s ? 1 : -1);
+        if (nc < 0 || nc >= size_[a]) {
+          free1[a][s] = false;
+          continue;
+        }
+        ++checks;
+        change[a][s] = s ? bit_stride_[a] : -bit_stride_[a];
+        free1[a][s] = grid_->free_at(static_cast<std::uint64_t>(here + change[a][s]));
+        if (free1[a][s]) emit(step(x, id), kOne, id);
+      }
+    }
+    for (int i = 0; i < dims_; ++i)
+      for (int k = i + 1; k < dims_; ++k)
+        for (int si = 0; si < 2; ++si)
+          for (int sk = 0; sk < 2; ++sk, ++id) {
+            if (!free1[i][si] || !free1[k][sk]) continue;
+            ++checks;
+            if (grid_->free_at(static_cast<std::uint64_t>(here + change[i][si] + change[k][sk])))
+              emit(step(x, id), kTwo, id);
+          }
+    checks_ += checks;
+  }
+
   template <class Emit>
   void expand_full(const State& x, Emit& emit) const {
     int c[kMaxDims];
-    const int sum = unpack_with_level_sum(x, c);
+    const int sum = grid_ ? 0 : unpack_with_level_sum(x, c);
+    if (grid_) layout_.unpack(x, c);
+    const std::int64_t here = grid_ ? static_cast<std::int64_t>(grid_->index(c)) : 0;
     bool free_cell[81];  // 3^4
     std::uint64_t checks = 0;
     const int centre = (full_cells_ - 1) / 2;
@@ -240,19 +291,24 @@ class LatticeGraph {
         continue;
       }
       int s = sum;
+      std::int64_t bit = here;
       bool inside = true;
       for (int i = 0, q = cell; i < dims_; ++i, q /= 3) {
         const int step = q % 3 - 1;
         if (step == 0) continue;
         const int nc = c[i] + step;
-        if (nc < 0 || nc >= extent_) {
+        if (nc < 0 || nc >= size_[i]) {
           inside = false;
           break;
         }
-        s += tables_[i][nc] - tables_[i][c[i]];
+        if (grid_)
+          bit += step * bit_stride_[i];
+        else
+          s += tables_[i][nc] - tables_[i][c[i]];
       }
       if (inside) ++checks;
-      free_cell[cell] = inside && s < threshold_;
+      free_cell[cell] =
+          inside && (grid_ ? grid_->free_at(static_cast<std::uint64_t>(bit)) : s < threshold_);
     }
     for (Move id = 0; id < moves_.size(); ++id) {
       bool ok = true;
@@ -262,13 +318,17 @@ class LatticeGraph {
     checks_ += checks;
   }
 
-  const GogField& field_;
+  ObstacleSource field_;
   KeyLayout layout_;
   Connectivity connectivity_;
   int dims_;
   int extent_;
-  int threshold_;
+  // GOG: the threshold and per-axis level tables. Occupancy: the grid, its bit strides.
+  int threshold_ = 0;
   std::array<const std::uint8_t*, kMaxDims> tables_{};
+  const OccupancyGrid* grid_ = nullptr;
+  std::array<int, kMaxDims> size_{};  // sides per axis (extent on GOG)
+  std::array<std::int64_t, kMaxDims> bit_stride_{};
   std::vector<MoveDef> moves_;
   int full_cells_ = 0;
   mutable std::uint64_t checks_ = 0;

@@ -20,6 +20,12 @@ namespace hpcplan {
 
 // The problem as solved.
 struct GridProblemReport {
+  // What was planned on: "gog" (then seed, threshold and shifts describe it), or an occupancy
+  // grid's format ("movingai", "voxel", "npy", "array") with its name, shape and checksum.
+  std::string obstacles = "gog";
+  std::string map;
+  std::vector<int> shape;
+  std::uint64_t map_checksum = 0;
   int dims = 0;
   int extent = 0;
   std::uint64_t seed = 0;
@@ -92,9 +98,12 @@ struct GridReport {
 inline constexpr int kDenseVisitedBits = 26;
 bool dense_visited_fits(int dims, int extent);
 GridReport solve_grid(const GridProblem& problem, const GridSearchOptions& options);
-// The same on a field already built (problem.gog must be its parameters): a planner solving
-// many queries on one field (the OMPL adapter) builds it once.
-GridReport solve_grid(const GogField& field, const GridProblem& problem,
+// What a problem plans on: its occupancy grid, or its GOG field, built into `gog`.
+ObstacleSource obstacles_of(const GridProblem& problem, std::optional<GogField>& gog);
+// The same on a field already built (problem.gog must be its parameters, or problem.occupancy
+// the grid): a planner solving many queries on one field (the OMPL adapter, a scenario run)
+// builds it once.
+GridReport solve_grid(const ObstacleSource& field, const GridProblem& problem,
                       const GridSearchOptions& options);
 
 // The parts of solving every engine shares (serial and distributed): describes the problem
@@ -102,7 +111,7 @@ GridReport solve_grid(const GogField& field, const GridProblem& problem,
 // state budget. The derived budget (half of available memory) is split among
 // `ranks_sharing_memory` processes.
 GridReport prepare_grid_report(const GridProblem& problem, const GridSearchOptions& options,
-                               const GogField& field, int ranks_sharing_memory);
+                               const ObstacleSource& field, int ranks_sharing_memory);
 // The dense engine: its memory budget per process (--memory-budget, else what max_states buys
 // the sparse engine), its OpenMP threads per process (--threads, else the process's share of
 // the cores), whether `ranks` slabs fit the budget, whether it runs this query (--engine
@@ -112,11 +121,11 @@ GridReport prepare_grid_report(const GridProblem& problem, const GridSearchOptio
 // the lattice graph).
 std::uint64_t dense_memory_budget(const GridSearchOptions& options, const GridReport& report);
 int dense_threads(const GridSearchOptions& options, int ranks_sharing_memory);
-bool dense_fits(const GogField& field, const GridSearchOptions& options, const GridReport& report,
+bool dense_fits(const ObstacleSource& field, const GridSearchOptions& options, const GridReport& report,
                 int ranks);
-bool uses_dense_engine(const GogField& field, const GridSearchOptions& options,
+bool uses_dense_engine(const ObstacleSource& field, const GridSearchOptions& options,
                        const GridReport& report, int ranks);
-void run_dense(const GogField& field, const GridProblem& problem, const GridSearchOptions& options,
+void run_dense(const ObstacleSource& field, const GridProblem& problem, const GridSearchOptions& options,
                dense::SlabTransport& transport, int ranks_sharing_memory, GridReport& report);
 
 // Derives quality from cost once the search has filled the result.

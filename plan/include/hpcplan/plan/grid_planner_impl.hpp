@@ -96,14 +96,19 @@ void search_into_report(const Graph& graph, const GridProblem& problem, const Gr
 }
 
 template <class MapPolicy, int W>
-void run_search(const GogField& field, const GridProblem& problem, const GridSearchOptions& o,
+void run_search(const ObstacleSource& field, const GridProblem& problem, const GridSearchOptions& o,
                 GridReport& report) {
   if constexpr (W == 1) {
     if (uses_jump_points(problem, o)) {
-      const GogCells2D cells(field);
-      const JumpPointGraph<GogCells2D> graph(cells,
-                                             {report.problem.goal[0], report.problem.goal[1]});
       report.options.pruning = "jump_points";
+      const std::array<int, 2> goal = {report.problem.goal[0], report.problem.goal[1]};
+      if (field.is_occupancy()) {
+        const OccupancyCells2D cells(field.occupancy());
+        const JumpPointGraph<OccupancyCells2D> graph(cells, goal);
+        return search_into_report<MapPolicy, 1>(graph, problem, o, report);
+      }
+      const GogCells2D cells(field.gog());
+      const JumpPointGraph<GogCells2D> graph(cells, goal);
       return search_into_report<MapPolicy, 1>(graph, problem, o, report);
     }
   }
@@ -114,10 +119,10 @@ void run_search(const GogField& field, const GridProblem& problem, const GridSea
 }  // namespace detail
 
 // The planner with a chosen visited map on a field already built (problem.gog must be the
-// field's parameters). The dense policy serves one-word keys only; wider ones fall back to the
+// field's parameters, or problem.occupancy the grid). The dense policy serves one-word keys only; wider ones fall back to the
 // default hash map.
 template <class MapPolicy>
-GridReport solve_grid_with(const GogField& field, const GridProblem& problem,
+GridReport solve_grid_with(const ObstacleSource& field, const GridProblem& problem,
                            const GridSearchOptions& options, double setup_ms = 0.0) {
   validate(problem, options);
   Stopwatch setup;
@@ -145,11 +150,11 @@ GridReport solve_grid_with(const GogField& field, const GridProblem& problem,
 // links those instead of compiling the whole search again (25 s of one core for the unit test
 // that compares the two maps, more under the sanitizers). A policy not listed here is still
 // instantiated where it is used.
-extern template GridReport solve_grid_with<search::DefaultVisitedMap>(const GogField&,
+extern template GridReport solve_grid_with<search::DefaultVisitedMap>(const ObstacleSource&,
                                                                       const GridProblem&,
                                                                       const GridSearchOptions&,
                                                                       double);
-extern template GridReport solve_grid_with<search::StampedDensePolicy>(const GogField&,
+extern template GridReport solve_grid_with<search::StampedDensePolicy>(const ObstacleSource&,
                                                                        const GridProblem&,
                                                                        const GridSearchOptions&,
                                                                        double);
@@ -158,6 +163,7 @@ extern template GridReport solve_grid_with<search::StampedDensePolicy>(const Gog
 template <class MapPolicy>
 GridReport solve_grid_with(const GridProblem& problem, const GridSearchOptions& options) {
   validate(problem, options);
+  if (problem.occupancy) return solve_grid_with<MapPolicy>(*problem.occupancy, problem, options);
   Stopwatch setup;
   const GogField field(problem.dims, problem.extent, problem.gog);
   return solve_grid_with<MapPolicy>(field, problem, options, setup.milliseconds());

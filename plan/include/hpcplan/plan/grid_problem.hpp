@@ -1,8 +1,10 @@
 #pragma once
-// A grid planning request on the GOG field, validated as a whole: what the CLI, benchmarks and
-// the distributed layer all build before searching.
+// A grid planning request, validated as a whole: what the CLI, benchmarks and the distributed
+// layer all build before searching. It plans on the GOG field it describes, or on an occupancy
+// grid a user brought (a map file, an array).
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <stop_token>
 #include <string>
@@ -10,6 +12,7 @@
 #include <vector>
 
 #include "hpcplan/env/gog.hpp"
+#include "hpcplan/env/obstacle_source.hpp"
 #include "hpcplan/graph/lattice_graph.hpp"
 
 namespace hpcplan {
@@ -35,6 +38,9 @@ struct GridProblem {
   int dims = 2;
   int extent = 100;
   GogParams gog;
+  // Set: the problem plans on this grid, not on GOG (dims and extent must be the grid's;
+  // occupancy_problem() sets them). Shared, so many queries on one map hold one copy.
+  std::shared_ptr<const OccupancyGrid> occupancy;
   Connectivity connectivity = Connectivity::seed_pairs;
   std::optional<std::vector<int>> start;  // default: (0,...,0), adjusted until free
   std::optional<std::vector<int>> goal;   // default: (extent-1,...), adjusted until free
@@ -72,6 +78,10 @@ struct GridSearchOptions {
   std::function<bool()> interrupted;
 };
 
+// A problem on an occupancy grid, its dims and extent the grid's.
+GridProblem occupancy_problem(std::shared_ptr<const OccupancyGrid> grid,
+                              Connectivity connectivity = Connectivity::seed_pairs);
+
 // Throws InputError for anything a user could have got wrong.
 void validate(const GridProblem& problem, const GridSearchOptions& options);
 // InputError if the options ask for checkpoints and the run does not use the dense engine.
@@ -80,7 +90,7 @@ void require_dense_for_checkpoints(const GridSearchOptions& options, int dims, b
 // Seed 002 III-B: from the nominal corner, advance one voxel at a time, one axis after another
 // (axis 0, 1, ..., d-1, 0, ...), towards the opposite corner until the state is free.
 // Returns the free state; InputError if the walk leaves the box first.
-std::vector<int> adjust_to_free(const GogField& field, std::vector<int> state, int direction,
+std::vector<int> adjust_to_free(const ObstacleSource& field, std::vector<int> state, int direction,
                                 std::string_view what);
 
 // Bytes one stored state costs the search (visited-map slot at typical load, frontier entry).
