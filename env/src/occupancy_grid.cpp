@@ -79,19 +79,21 @@ void OccupancyGrid::set_free(std::span<const int> c, bool free) {
   if (!inside(c)) throw std::out_of_range("OccupancyGrid::set_free: cell outside the shape");
   const std::uint64_t bit = index(c.data());
   const std::uint64_t mask = std::uint64_t{1} << (bit & 63);
+  sealed_ = false;
   if (free)
     words_[bit >> 6] |= mask;
   else
     words_[bit >> 6] &= ~mask;
 }
 
-std::uint64_t OccupancyGrid::free_cells() const {
-  std::uint64_t n = 0;
-  for (std::uint64_t w : words_) n += static_cast<std::uint64_t>(std::popcount(w));
-  return n;
+void OccupancyGrid::seal() {
+  sealed_ = false;
+  free_cells_ = free_cells();
+  checksum_ = compute_checksum();
+  sealed_ = true;
 }
 
-std::uint64_t OccupancyGrid::checksum() const {
+std::uint64_t OccupancyGrid::compute_checksum() const {
   std::uint64_t h = 0xcbf29ce484222325ULL;
   auto mix = [&h](std::uint64_t v) {
     for (int i = 0; i < 8; ++i) {
@@ -127,6 +129,7 @@ OccupancyGrid occupancy_from_bytes(const std::uint8_t* data,
     for (std::uint64_t x = 0; x < width; ++x)
       if (src[x]) grid.block_at(base + x);
   }
+  grid.seal();
   return grid;
 }
 

@@ -472,6 +472,7 @@ OccupancyGrid parse_movingai_map(std::string_view text, const std::string& name,
                " rows the header claims (a row too many?): " + shown(trim(line)));
   grid.name = name;
   grid.format = "movingai";
+  grid.seal();
   return grid;
 }
 
@@ -536,6 +537,7 @@ OccupancyGrid parse_voxel_map(std::string_view text, const std::string& name,
   }
   grid.name = name;
   grid.format = "voxel";
+  grid.seal();
   return grid;
 }
 
@@ -600,6 +602,7 @@ OccupancyGrid parse_npy(std::string_view bytes, const std::string& name) {
     OccupancyGrid grid = named(name, [&] { return occupancy_from_bytes(data, h.shape); });
     grid.name = name;
     grid.format = "npy";
+    grid.seal();
     return grid;
   }
   // Fortran order: the array's first axis varies fastest in memory, and array axis k is the
@@ -628,6 +631,7 @@ OccupancyGrid parse_npy(std::string_view bytes, const std::string& name) {
   }
   grid.name = name;
   grid.format = "npy";
+  grid.seal();
   return grid;
 }
 
@@ -667,6 +671,7 @@ OccupancyGrid load_occupancy(const std::string& path, Terrain terrain) {
   }();
   grid.name = std::filesystem::path(path).filename().string();
   grid.format = std::string(to_string(format));
+  grid.seal();
   return grid;
 }
 

@@ -61,13 +61,19 @@ class OccupancyGrid {
 
   void set_free(std::span<const int> coords, bool free);
   // Marks the cell of bit index `bit` (in shape) blocked; loaders write whole rows this way.
-  void block_at(std::uint64_t bit) { words_[bit >> 6] &= ~(std::uint64_t{1} << (bit & 63)); }
+  void block_at(std::uint64_t bit) {
+    words_[bit >> 6] &= ~(std::uint64_t{1} << (bit & 63));
+    sealed_ = false;
+  }
 
   const std::uint64_t* words() const { return words_.data(); }
   std::uint64_t word_count() const { return words_.size(); }
-  std::uint64_t free_cells() const;
-  // FNV-1a over the shape and the bits: a checkpoint's identity and a report's fingerprint.
-  std::uint64_t checksum() const;
+  // Free cells, and FNV-1a over the shape and the bits (a checkpoint's identity and a report's
+  // fingerprint): computed by seal(), which loaders call once the grid is written, so every
+  // query reads them for free; on a grid changed since, computed afresh on each call.
+  std::uint64_t free_cells() const { return sealed_ ? free_cells_ : count_free(0, words_.size() * 64); }
+  std::uint64_t checksum() const { return sealed_ ? checksum_ : compute_checksum(); }
+  void seal();
   std::uint64_t bytes() const { return words_.size() * sizeof(std::uint64_t); }
 
   // Where the grid came from, for reports and errors: the file's name (or "array") and its
@@ -76,7 +82,11 @@ class OccupancyGrid {
   std::string format = "array";
 
  private:
+  std::uint64_t compute_checksum() const;
+
   std::vector<int> shape_;
+  bool sealed_ = false;
+  std::uint64_t free_cells_ = 0, checksum_ = 0;
   int extent_ = 2;
   std::uint64_t cells_ = 0;
   std::vector<std::int64_t> stride_;
