@@ -2,7 +2,9 @@
 
 The engine of the ``hpcplan`` executable, called in-process:
 
-    hpcplan.grid      seed 002's GOG lattice planner (solve) and the field (Field)
+    hpcplan.grid      seed 002's lattice planner (solve) on the GOG field (Field) or on an
+                      occupancy array or map file (occupancy=, map=, load_map)
+    hpcplan.scen      MovingAI scenario files checked against their published optima (run)
     hpcplan.map3d     3D box maps (load, then plan)
     hpcplan.sphere2d  2D sphere worlds (load, then plan)
     hpcplan.sph       the SPH fluid (Fluid), its particles as NumPy views
@@ -16,11 +18,11 @@ engine's stop token (KeyboardInterrupt), and a StopSource ends them from another
 """
 from . import _hpcplan
 from ._hpcplan import StopSource, __version__
-from ._results import GridResult, PlanResult, SimResult
-from . import grid, map3d, sim, sph, sphere2d
+from ._results import GridResult, PlanResult, ScenResult, SimResult
+from . import grid, map3d, scen, sim, sph, sphere2d
 
-__all__ = ["__version__", "StopSource", "GridResult", "PlanResult", "SimResult", "grid",
-           "map3d", "sphere2d", "sph", "sim", "planners"]
+__all__ = ["__version__", "StopSource", "GridResult", "PlanResult", "ScenResult", "SimResult",
+           "grid", "map3d", "sphere2d", "sph", "sim", "scen", "planners"]
 
 
 def planners(world=None):

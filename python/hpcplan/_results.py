@@ -103,3 +103,36 @@ class SimResult:
 
     def __repr__(self):
         return f"SimResult(status={self.status!r}, runs={len(self.runs)})"
+
+
+class ScenResult:
+    """A scenario run's answer (``hpcplan scen --json``, and its ``--csv`` rows).
+
+    rows : list          one dict per problem, in file order: row (0-based among the file's
+                         problems), bucket, start and goal (tuples, x first), optimal (the
+                         published length), cost (0.0 unless solved), status, expanded, hops,
+                         time_us, mismatch (bool)
+    mismatches : int     rows whose answer breaks the algorithm's promise against the
+                         published optimum (plan/scenario_run.hpp); mismatch_rows: their
+                         indices. A mismatch is returned, never raised (the CLI exits 1)
+    buckets : list       per bucket: rows, mismatches, p50_us, p95_us, max_us, mean_expanded
+    status : str         ok, or cancelled (a stop ended it: rows holds the rows finished
+                         before, and the summary is theirs)
+    ok : bool            status ok and no mismatch: what the CLI's exit 0 means
+    report : dict        the whole ``hpcplan scen --json`` object
+    """
+
+    __slots__ = ("report", "rows", "cancelled")
+
+    def __init__(self, report, rows, cancelled=False):
+        self.report, self.rows, self.cancelled = report, rows, cancelled
+
+    status = property(lambda self: "cancelled" if self.cancelled else "ok")
+    mismatches = property(lambda self: self.report["mismatches"])
+    mismatch_rows = property(lambda self: self.report["mismatch_rows"])
+    buckets = property(lambda self: self.report["buckets"])
+    ok = property(lambda self: not self.cancelled and self.report["mismatches"] == 0)
+
+    def __repr__(self):
+        return (f"ScenResult(status={self.status!r}, rows={len(self.rows)}, "
+                f"mismatches={self.mismatches}, scenario={self.report['scenario']!r})")

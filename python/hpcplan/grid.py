@@ -1,4 +1,5 @@
-"""hpcplan.grid: seed 002's planner on the GOG lattice (``hpcplan grid``), and the field.
+"""hpcplan.grid: seed 002's planner on the GOG lattice (``hpcplan grid``), and the field; or on
+an occupancy grid the caller brings (a NumPy array, a map file).
 
     >>> import hpcplan
     >>> r = hpcplan.grid.solve(dims=4, algo="astar", extent=40, path=True)
@@ -6,9 +7,17 @@
     >>> field = hpcplan.grid.Field(dims=4, extent=40)
     >>> field.free(r.path).all()
 
+    >>> a = hpcplan.grid.load_map("Boston_0_256.map")     # (256, 256) bool, True = blocked
+    >>> hpcplan.grid.solve(occupancy=a, start=(188, 1), goal=(12, 231)).cost
+
+Coordinates on an occupancy grid are x first, as on the command line: x is the array's LAST
+axis (a .map's column), y the one before it, so start=(x, y) is the cell a[y, x].
+
 The keyword arguments are hpcplan grid's options (``--max-states`` is ``max_states``), with its
 ranges and defaults; the distributed options (MPI ranks) and ``--json`` are the executable's.
 """
+import inspect
+
 import numpy as np
 
 from . import _hpcplan, _options
@@ -18,18 +27,31 @@ _TABLE = _hpcplan.grid_options()
 _SOLVE = _options.Options(_TABLE, sequences=("start", "goal"))
 _FIELD_NAMES = ("dims", "extent", "seed", "threshold", "density", "gog_shift_p", "gog_shift_v")
 _FIELD = _options.Options(_TABLE, only=_FIELD_NAMES)
-_FIELD_SOLVE = _options.Options(_TABLE, exclude=_FIELD_NAMES, sequences=("start", "goal"))
+_FIELD_SOLVE = _options.Options(_TABLE, exclude=_FIELD_NAMES + ("map",),
+                                sequences=("start", "goal"))
+
+_OCCUPANCY = inspect.Parameter("occupancy", inspect.Parameter.KEYWORD_ONLY, default=None)
+_OCCUPANCY_DOC = """occupancy : numpy.ndarray, optional
+    Plan on this array instead of GOG: bool or uint8 (nonzero = blocked), 1 to 16 dimensions,
+    C-contiguous (read in place, never copied; anything else is refused with a ValueError
+    saying what to pass). start and goal are x first: x is the array's last axis. dims, map
+    and GOG's options (extent, seed, threshold, density, gog_shift_p, gog_shift_v) are
+    refused with it; connectivity is seed unless given ("full" up to 4 dimensions)."""
 
 
 def solve(**kwargs):
     given = _options.bind(_SOLVE_SIGNATURE, "solve", kwargs)
     stop = given.pop("stop", None)
-    report, path = _hpcplan.grid_solve(_SOLVE.tokens(given), stop)
+    occupancy = given.pop("occupancy", None)
+    report, path = _hpcplan.grid_solve(_SOLVE.tokens(given), stop, occupancy)
     return GridResult(report, path)
 
 
-_SOLVE_SIGNATURE = _options.make(solve, _SOLVE, returns=GridResult, summary="""
-Solves one query on the GOG field, as ``hpcplan grid`` does; returns a GridResult.
+_SOLVE_SIGNATURE = _options.make(solve, _SOLVE, returns=GridResult,
+                                 trailing=(_OCCUPANCY, _options.STOP),
+                                 extra_doc=_OCCUPANCY_DOC + "\n" + _options.STOP_DOC, summary="""
+Solves one query on the GOG field, a map file (map=) or an array (occupancy=), as
+``hpcplan grid`` does; returns a GridResult.
 
 BFS and Dijkstra run on the dense engine where they fit (engine="auto"), A* and weighted A* on
 the best-first one. The GIL is released while it runs; Ctrl-C cancels it within one expansion
@@ -37,28 +59,67 @@ or level (with checkpoint=, the dense search stops at its next level with the ch
 written), and KeyboardInterrupt is raised. Bad options raise ValueError with the CLI's message.""")
 
 
+def load_map(path, terrain="ground"):
+    """The occupancy grid of a map file as a new NumPy bool array (True = blocked), read by the
+    engine's own parser (what ``hpcplan grid --map`` plans on).
+
+    Shapes are NumPy order: (H, W) for a MovingAI .map (a[y, x]), (D, H, W) for a .3dmap voxel
+    map (a[z, y, x]), the stored shape for a .npy. ``terrain="water"`` (.map only) gives the
+    grid of the map's water cells, free where the file has 'W'; "ground" (the default) has
+    '.', 'G' and 'S' free. Passed back as ``occupancy=``, it plans as the file does (give
+    connectivity="full" for a .3dmap: map= uses the format's own, an array seed unless told).
+    A file that cannot be read or parsed raises ValueError naming it (and the line)."""
+    return _hpcplan.load_map(_options.text("path", path), _options.text("terrain", terrain))
+
+
 class Field:
-    """A GOG field (seed 002 Algorithm 1) built once, for bulk queries and repeated solves.
+    """A GOG field (seed 002 Algorithm 1) built once, for bulk queries and repeated solves; or,
+    with ``occupancy=array``, an occupancy grid built once from the array (one bit per cell:
+    the Field keeps no reference to the array, which may change afterwards without changing
+    the Field).
 
     Immutable: any number of threads may query or solve on it at once.
     """
 
     def __init__(self, **kwargs):
-        self._given = _options.bind(_FIELD_SIGNATURE, "Field", kwargs)
-        self._native = _hpcplan.Field(_FIELD.tokens(self._given))
+        given = _options.bind(_FIELD_SIGNATURE, "Field", kwargs)
+        occupancy = given.pop("occupancy", None)
+        if occupancy is None:
+            self._given = given
+            self._native = _hpcplan.Field(_FIELD.tokens(given))
+            return
+        for name, value in given.items():
+            if value is not None:
+                raise ValueError(f"{name}= describes the GOG field; occupancy= plans on the "
+                                 "array's own shape and obstacles")
+        self._given = {}
+        self._native = _hpcplan.Field.from_occupancy(occupancy)
 
     dims = property(lambda self: self._native.dims)
-    extent = property(lambda self: self._native.extent)
-    seed = property(lambda self: self._native.seed)
+    extent = property(lambda self: self._native.extent,
+                      doc="the lattice's side (an occupancy grid's largest side)")
+    seed = property(lambda self: self._native.seed, doc="GOG's seed (None on an occupancy grid)")
     threshold = property(lambda self: self._native.threshold,
-                         doc="c_v: a state is blocked when its per-axis levels sum to it or more")
+                         doc="c_v: a state is blocked when its per-axis levels sum to it or more "
+                             "(None on an occupancy grid)")
     blocked_fraction = property(lambda self: self._native.blocked_fraction,
-                                doc="the exact blocked fraction of the lattice")
+                                doc="the exact blocked fraction of the lattice (of the array's "
+                                    "cells on an occupancy grid)")
+    shape = property(lambda self: self._native.shape,
+                     doc="an occupancy grid's array shape, NumPy order (None for GOG)")
+    grid_bytes = property(lambda self: self._native.grid_bytes,
+                          doc="the bytes an occupancy grid's bits take (one bit per cell, rows "
+                              "of 32 cells or more padded to 64); 0 for GOG")
+
+    def occupancy(self):
+        """An occupancy grid's cells as a new NumPy bool array (True = blocked) in the array's
+        shape; ValueError on a GOG field."""
+        return self._native.occupancy()
 
     def free(self, states):
         """Whether each lattice state is free: an integer array of shape (n, dims) gives a bool
         array of shape (n,), one state of shape (dims,) a bool. States outside the box are not
-        free."""
+        free. On an occupancy grid a state is x first (x = the array's last axis)."""
         return self._native.free(np.asarray(states))
 
     def blocked(self, states):
@@ -79,13 +140,20 @@ class Field:
         return GridResult(report, path)
 
     def __repr__(self):
+        if self.shape is not None:
+            return (f"Field(occupancy shape={self.shape}, "
+                    f"blocked_fraction={self.blocked_fraction:.4f})")
         return (f"Field(dims={self.dims}, extent={self.extent}, seed={self.seed}, "
                 f"threshold={self.threshold}, blocked_fraction={self.blocked_fraction:.4f})")
 
 
-_FIELD_SIGNATURE = _options.make(Field.__init__, _FIELD, trailing=(), extra_doc="",
-                                 method=True, summary="The field of hpcplan grid's field options.")
+_FIELD_SIGNATURE = _options.make(Field.__init__, _FIELD, trailing=(_OCCUPANCY,),
+                                 extra_doc="""occupancy : numpy.ndarray, optional
+    An occupancy grid instead of GOG (then no other argument): bool or uint8 (nonzero =
+    blocked), 1 to 16 dimensions, C-contiguous, read in place once.""",
+                                 method=True, summary="""
+The field of hpcplan grid's field options, or the occupancy grid of an array.""")
 _FIELD_SOLVE_SIGNATURE = _options.make(Field.solve, _FIELD_SOLVE, returns=GridResult, method=True,
                                        summary="""
 Solves one query on this field (built once: no set-up per query), as grid.solve does with the
-field's own options.""")
+field's own options (or its occupancy grid: start and goal x first).""")

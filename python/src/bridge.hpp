@@ -144,5 +144,6 @@ void bind_grid(py::module_& m);
 void bind_worlds(py::module_& m);
 void bind_fluid(py::module_& m);
 void bind_sim(py::module_& m);
+void bind_scen(py::module_& m);
 
 }  // namespace hpcplan::python

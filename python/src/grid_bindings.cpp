@@ -1,9 +1,11 @@
-// hpcplan.grid: the GOG lattice planner (hpcplan grid's options and answers) and the field
-// itself for bulk queries.
+// hpcplan.grid: the lattice planner (hpcplan grid's options and answers) on the GOG field or on
+// an occupancy array the caller brings (read in place), the field itself for bulk queries, and
+// the map files as NumPy arrays.
 #include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,18 +13,118 @@
 #include "hpcplan/cli/grid_options.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/env/gog.hpp"
+#include "hpcplan/env/occupancy_grid.hpp"
+#include "hpcplan/env/occupancy_io.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
 
 namespace hpcplan::python {
 
 namespace {
 
-// A GOG field built once from hpcplan grid's field options, shared by every query and solve
-// on it (immutable: any number of threads may use it at once).
+// A GOG field built once from hpcplan grid's field options, or an occupancy grid built once
+// from an array, shared by every query and solve on it (immutable: any number of threads may
+// use it at once).
 struct Field {
-  GridProblem problem;  // dims, extent and the field's parameters as given
-  std::shared_ptr<const GogField> field;
+  GridProblem problem;  // dims, extent and the field's parameters as given (or the grid's)
+  std::shared_ptr<const GogField> field;  // null for an occupancy grid (problem.occupancy)
+
+  bool occupancy() const { return problem.occupancy != nullptr; }
+  int dims() const { return problem.dims; }
+  int extent() const { return problem.extent; }
 };
+
+// The dtype's name, as NumPy writes it ("float64").
+std::string dtype_name(const py::array& a) {
+  return py::str(a.dtype()).cast<std::string>();
+}
+
+// An occupancy array's bytes, checked (with the GIL held): a NumPy bool or uint8 array of 1 to
+// 16 dimensions, C-contiguous, read where it lies (no copy is made, so none is made silently:
+// an array that would need one is refused with what to do instead).
+struct ArrayBytes {
+  const std::uint8_t* data = nullptr;
+  std::vector<std::int64_t> shape;  // NumPy order
+};
+
+ArrayBytes occupancy_bytes(const py::handle& object) {
+  if (!py::isinstance<py::array>(object))
+    throw py::type_error(
+        "occupancy must be a NumPy array (bool or uint8, nonzero = blocked), not " +
+        py::str(py::type::of(object).attr("__name__")).cast<std::string>());
+  const auto a = py::reinterpret_borrow<py::array>(object);
+  if (a.ndim() < 1 || a.ndim() > 16)
+    throw InputError("occupancy must have 1 to 16 dimensions, not " + std::to_string(a.ndim()));
+  const char kind = a.dtype().kind();
+  if (!((kind == 'b' || kind == 'u') && a.itemsize() == 1))
+    throw InputError("occupancy must be a bool or uint8 array (nonzero = blocked), not " +
+                     dtype_name(a) + "; convert it with a.astype(np.uint8)");
+  if (!(a.flags() & py::array::c_style))
+    throw InputError(
+        "occupancy must be C-contiguous (it is read in place, not copied); pass "
+        "np.ascontiguousarray(a)");
+  ArrayBytes b;
+  b.data = static_cast<const std::uint8_t*>(a.data());
+  b.shape.assign(a.shape(), a.shape() + a.ndim());
+  return b;
+}
+
+// The grid of checked bytes: one bit per cell. Needs no GIL (the caller holds the array).
+std::shared_ptr<const OccupancyGrid> grid_of(const ArrayBytes& b) {
+  return std::make_shared<const OccupancyGrid>(occupancy_from_bytes(b.data, b.shape));
+}
+
+Field field_of_array(const py::object& array) {
+  const ArrayBytes bytes = occupancy_bytes(array);
+  std::shared_ptr<const OccupancyGrid> grid;
+  {
+    py::gil_scoped_release release;  // a large array's bits take a while; `array` is held
+    grid = grid_of(bytes);
+  }
+  return {occupancy_problem(std::move(grid)), nullptr};
+}
+
+// The lattice states an occupancy grid's NumPy array of bits (nonzero = blocked), in NumPy
+// order (the grid's axis 0 is the array's last axis), as bool: True = blocked.
+py::array array_of_grid(const OccupancyGrid& grid) {
+  const int d = grid.dims();
+  std::vector<py::ssize_t> shape(d);
+  for (int a = 0; a < d; ++a) shape[d - 1 - a] = grid.size(a);
+  py::array_t<bool> out(shape);
+  bool* cells = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    const std::uint64_t width = static_cast<std::uint64_t>(grid.size(0));
+    const std::uint64_t rows = grid.cells() / width;
+    const std::uint64_t row_bits = d > 1 ? static_cast<std::uint64_t>(grid.stride(1)) : 0;
+    for (std::uint64_t r = 0; r < rows; ++r) {
+      bool* row = cells + r * width;
+      const std::uint64_t base = r * row_bits;
+      for (std::uint64_t x = 0; x < width; x += 64) {
+        const int n = static_cast<int>(std::min<std::uint64_t>(64, width - x));
+        const std::uint64_t free = grid.bits(base + x, n);
+        for (int k = 0; k < n; ++k) row[x + k] = ((free >> k) & 1) == 0;
+      }
+    }
+  }
+  return out;
+}
+
+py::array load_map_array(const std::string& path, const std::string& terrain) {
+  const env::MapFormat format = env::map_format_of(path);
+  env::Terrain t = env::Terrain::ground;
+  if (terrain == "water")
+    t = env::Terrain::water;
+  else if (terrain != "ground")
+    throw InputError("terrain must be ground or water, not '" + terrain + "'");
+  if (t == env::Terrain::water && format != env::MapFormat::movingai)
+    throw InputError("terrain='water' is a .map's class of cells; '" + path + "' is a " +
+                     std::string(env::to_string(format)) + " file");
+  OccupancyGrid grid = [&] {
+    py::gil_scoped_release release;
+    return env::load_occupancy(path, t);
+  }();
+  return array_of_grid(grid);
+}
 
 Field make_field(const std::vector<std::string>& tokens) {
   cli::GridArgs a;
@@ -51,15 +153,29 @@ py::array_t<std::int64_t> states_of(const py::array& states, int dims) {
 
 // Free or not, per state, from the field's per-axis level tables: a state is blocked when its
 // levels summed over the axes reach the threshold; a state outside the box is not free.
+// On an occupancy grid, a state is its cell (x first), free when inside the shape and unblocked.
 py::object free_states(const Field& f, const py::array& states) {
-  const GogField& field = *f.field;
-  const int dims = field.dims();
+  const int dims = f.dims();
   const py::array_t<std::int64_t> s = states_of(states, dims);
   const std::int64_t* in = s.data();
   const py::ssize_t n = s.ndim() == 1 ? 1 : s.shape(0);
   py::array_t<bool> out(n);
   bool* free = out.mutable_data();
-  auto decide = [&] {
+  auto decide_on_grid = [&] {
+    const OccupancyGrid& grid = *f.problem.occupancy;
+    std::vector<int> c(dims);
+    for (py::ssize_t i = 0; i < n; ++i) {
+      bool inside = true;
+      for (int k = 0; k < dims && inside; ++k) {
+        const std::int64_t v = in[i * dims + k];
+        inside = v >= 0 && v < grid.size(k);
+        c[k] = inside ? static_cast<int>(v) : 0;
+      }
+      free[i] = inside && grid.is_free(c);
+    }
+  };
+  auto decide_on_gog = [&] {
+    const GogField& field = *f.field;
     std::vector<const std::uint8_t*> tables(dims);
     for (int k = 0; k < dims; ++k) tables[k] = field.level_table(k);
     const std::int64_t extent = field.extent();
@@ -75,6 +191,7 @@ py::object free_states(const Field& f, const py::array& states) {
       free[i] = inside && sum < threshold;
     }
   };
+  auto decide = [&] { f.occupancy() ? decide_on_grid() : decide_on_gog(); };
   if (n >= 65536) {
     py::gil_scoped_release release;
     decide();
@@ -94,12 +211,36 @@ py::array path_array(const std::vector<std::vector<int>>& path, int dims) {
   return a;
 }
 
+// The options that describe the GOG field, refused on an occupancy grid (the array is the
+// field), named as the keyword arguments.
+void refuse_gog_options(const cli::GridArgs& a) {
+  std::vector<const CLI::Option*> options = a.gog_options;
+  options.push_back(a.dims_option);
+  for (const CLI::Option* o : options) {
+    if (o == nullptr || o->count() == 0) continue;
+    std::string name = o->get_name().substr(o->get_name().find_first_not_of('-'));
+    std::replace(name.begin(), name.end(), '-', '_');
+    throw InputError(name + "= describes the GOG field; occupancy= plans on the array's own " +
+                     "shape and obstacles");
+  }
+  if (!a.map.empty()) throw InputError("map= and occupancy= both give the obstacles; give one");
+}
+
+// One query: on the GOG field the options describe, on `on_field` (built once), or on the
+// occupancy array `array` (read in place while the GIL is released; None: not given).
 py::tuple solve(const std::vector<std::string>& tokens, const StopSource* stop,
-                const Field* on_field) {
+                const Field* on_field, const py::object& array) {
   auto a = std::make_shared<cli::GridArgs>(parse_cached<cli::GridArgs>(
       "hpcplan grid", tokens,
       [](CLI::App* c, cli::GridArgs& args) { cli::add_grid_options(c, args); }));
-  if (on_field != nullptr) {
+  std::optional<ArrayBytes> bytes;
+  if (!array.is_none()) bytes = occupancy_bytes(array);
+  std::shared_ptr<const OccupancyGrid> grid =
+      on_field != nullptr ? on_field->problem.occupancy : nullptr;
+  if (bytes || grid) {
+    refuse_gog_options(*a);
+    a->dims_option = nullptr;  // the array gives the dimensions
+  } else if (on_field != nullptr) {
     const GridProblem& f = on_field->problem;
     const GogParams &x = f.gog, &y = a->problem.gog;
     if (f.dims != a->problem.dims || f.extent != a->problem.extent || x.seed != y.seed ||
@@ -118,9 +259,17 @@ py::tuple solve(const std::vector<std::string>& tokens, const StopSource* stop,
   Answer answer = call_released<Answer>(
       [&](const cli::RunControl& control) {
         cli::prepare_grid_run(*a, 0, 1, control);
+        if (bytes) grid = grid_of(*bytes);  // the caller's frame holds `array` meanwhile
+        if (grid) {
+          GridProblem p = occupancy_problem(grid, a->problem.connectivity);
+          p.start = std::move(a->problem.start);
+          p.goal = std::move(a->problem.goal);
+          a->problem = std::move(p);
+        }
         Answer r;
-        r.report = on_field != nullptr ? solve_grid(*on_field->field, a->problem, a->options)
-                                       : solve_grid(a->problem, a->options);
+        r.report = on_field != nullptr && on_field->field
+                       ? solve_grid(*on_field->field, a->problem, a->options)
+                       : solve_grid(a->problem, a->options);
         r.json = cli::finish_grid_run(r.report, *a, control);
         r.json.erase("path");  // given as an array instead
         return r;
@@ -141,29 +290,62 @@ void bind_grid(py::module_& m) {
   });
   m.def(
       "grid_solve",
-      [](const std::vector<std::string>& tokens, const StopSource* stop) {
-        return solve(tokens, stop, nullptr);
-      },
-      py::arg("tokens"), py::arg("stop") = nullptr);
+      [](const std::vector<std::string>& tokens, const StopSource* stop,
+         const py::object& occupancy) { return solve(tokens, stop, nullptr, occupancy); },
+      py::arg("tokens"), py::arg("stop") = nullptr, py::arg("occupancy") = py::none());
+  m.def("load_map", &load_map_array, py::arg("path"), py::arg("terrain") = "ground");
 
-  py::class_<Field>(m, "Field", "A GOG field built once (hpcplan.grid.Field wraps it)")
+  // A GOG field's parameter, None on an occupancy grid.
+  auto gog = [](auto get) {
+    return [get](const Field& f) -> py::object {
+      return f.field ? py::cast(get(*f.field)) : py::none();
+    };
+  };
+  py::class_<Field>(m, "Field",
+                    "A GOG field or an occupancy grid built once (hpcplan.grid.Field wraps it)")
       .def(py::init(&make_field), py::arg("tokens"))
-      .def_property_readonly("dims", [](const Field& f) { return f.field->dims(); })
-      .def_property_readonly("extent", [](const Field& f) { return f.field->extent(); })
-      .def_property_readonly("threshold", [](const Field& f) { return f.field->threshold(); })
+      .def_static("from_occupancy", &field_of_array, py::arg("occupancy"))
+      .def_property_readonly("dims", &Field::dims)
+      .def_property_readonly("extent", &Field::extent)
+      .def_property_readonly("is_occupancy", &Field::occupancy)
+      .def_property_readonly("shape",
+                             [](const Field& f) -> py::object {
+                               if (!f.occupancy()) return py::none();
+                               const OccupancyGrid& g = *f.problem.occupancy;
+                               py::tuple t(g.dims());
+                               for (int a = 0; a < g.dims(); ++a)
+                                 t[g.dims() - 1 - a] = py::int_(g.size(a));
+                               return t;
+                             })
+      .def_property_readonly("grid_bytes",
+                             [](const Field& f) -> std::uint64_t {
+                               return f.occupancy() ? f.problem.occupancy->bytes() : 0;
+                             })
+      .def_property_readonly("threshold", gog([](const GogField& g) { return g.threshold(); }))
       .def_property_readonly("blocked_fraction",
-                             [](const Field& f) { return f.field->blocked_fraction(); })
-      .def_property_readonly("seed", [](const Field& f) { return f.field->params().seed; })
+                             [](const Field& f) {
+                               if (f.field) return f.field->blocked_fraction();
+                               return ObstacleSource(*f.problem.occupancy).blocked_fraction();
+                             })
+      .def_property_readonly("seed", gog([](const GogField& g) { return g.params().seed; }))
       .def_property_readonly("gog_shift_p",
-                             [](const Field& f) { return f.field->params().shift_p; })
+                             gog([](const GogField& g) { return g.params().shift_p; }))
       .def_property_readonly("gog_shift_v",
-                             [](const Field& f) { return f.field->params().shift_v; })
-      .def_property_readonly("density", [](const Field& f) { return f.field->params().density; })
+                             gog([](const GogField& g) { return g.params().shift_v; }))
+      .def_property_readonly("density", gog([](const GogField& g) { return g.params().density; }))
       .def("free", &free_states, py::arg("states"))
+      .def("occupancy",
+           [](const Field& f) {
+             if (!f.occupancy()) throw InputError("a GOG Field has no occupancy array");
+             return array_of_grid(*f.problem.occupancy);
+           })
       .def(
           "levels",
           [](py::object self, int axis) {
             const Field& f = self.cast<const Field&>();
+            if (!f.field)
+              throw InputError(
+                  "an occupancy Field has no GOG levels (occupancy() gives its cells)");
             if (axis < 0 || axis >= f.field->dims())
               throw InputError("axis " + std::to_string(axis) + " is not in [0, " +
                                std::to_string(f.field->dims()) + ")");
@@ -174,7 +356,7 @@ void bind_grid(py::module_& m) {
       .def(
           "solve",
           [](const Field& f, const std::vector<std::string>& tokens, const StopSource* stop) {
-            return solve(tokens, stop, &f);
+            return solve(tokens, stop, &f, py::none());
           },
           py::arg("tokens"), py::arg("stop") = nullptr);
 }

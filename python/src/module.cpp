@@ -59,4 +59,5 @@ PYBIND11_MODULE(_hpcplan, m) {
   hpcplan::python::bind_worlds(m);
   hpcplan::python::bind_fluid(m);
   hpcplan::python::bind_sim(m);
+  hpcplan::python::bind_scen(m);
 }
