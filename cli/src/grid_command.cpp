@@ -36,6 +36,7 @@ Action register_grid_command(CLI::App& app) {
   auto args = std::make_shared<GridCommandArgs>();
   CLI::App* cmd = app.add_subcommand("grid", "Grid BFS/A* on the GOG procedural obstacle field");
   add_grid_options(cmd, args->grid);
+  add_field_option(cmd, args->grid);
   auto& d = args->dist;
   const char* mpi = "Distributed (under mpirun/srun)";
   cmd->add_option("--mode", args->mode,
@@ -98,6 +99,7 @@ Action register_grid_command(CLI::App& app) {
     // one, the signals keep their default actions.
     const RunControl control = a.options.checkpoint.empty() ? RunControl{} : signal_control();
     prepare_grid_run(a, rank, ranks, control);
+    check_field_request(a);
 
     distributed::DistGridOptions& dist = args->dist;
     dist.scheme = distributed::parse_scheme(args->mode);
@@ -118,6 +120,32 @@ Action register_grid_command(CLI::App& app) {
     }
     distributed::validate(dist, a.problem.extent, ranks, a.problem.dims);
 
+    if (!a.field_out.empty()) {
+      if (!args->simulate_ranks.empty())
+        throw InputError("--field-out computes a field; it takes no --simulate-ranks");
+      DistanceFieldRun run = context.comm ? distributed::distance_field_distributed(
+                                                a.problem, a.options, *context.comm)
+                                          : distance_field(a.problem, a.options);
+      if (!context.is_root()) return kExitOk;
+      // A field cut short by a stop is not written: the report says so.
+      if (run.field.complete) write_distance_field(a.field_out, run.field);
+      const nlohmann::json field =
+          field_json(run.field, a.field_out, run.field.complete, run.goal_given);
+      const std::string json =
+          finish_grid_run(run.report, a, control, {{"distance_field", field}}).dump() + "\n";
+      if (args->json) {
+        std::fputs(json.c_str(), stdout);
+      } else {
+        std::string text = to_summary(run.report);
+        text += "  field      " +
+                (run.field.complete ? a.field_out : "not written (the search was stopped)") + ": " +
+                std::string(run.field.hops ? "int32 hops" : "float32 costs") + ", " +
+                std::to_string(run.field.reached) + " of " + std::to_string(run.field.cells()) +
+                " cells reached" + (run.goal_given ? "" : " (no --goal: start to start)") + "\n";
+        std::fputs(text.c_str(), stdout);
+      }
+      return kExitOk;
+    }
     if (!args->simulate_ranks.empty()) {
       if (ranks > 1)
         throw InputError(

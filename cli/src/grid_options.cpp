@@ -66,6 +66,37 @@ void add_grid_options(CLI::App* cmd, GridArgs& a) {
   cmd->add_option("--output", a.output, "Also write the JSON result to this file (atomically)");
 }
 
+void add_field_option(CLI::App* cmd, GridArgs& a) {
+  cmd->add_option("--field-out", a.field_out,
+                  "Write the distance field of --start to FILE, a NumPy .npy of the map's shape "
+                  "in NumPy order ((H, W) for a 2D map): int32 hop counts with --algo bfs, "
+                  "float32 path costs with --algo dijkstra, -1 for blocked and unreachable "
+                  "cells. The dense engine settles every reachable cell (--goal optional, still "
+                  "reported); occupancy maps and GOG fields; serial or under mpirun (rank 0 "
+                  "writes)");
+}
+
+void check_field_request(const GridArgs& a) {
+  if (a.field_out.empty()) return;
+  validate_distance_field(a.problem, a.options);
+  require_writable_destination(a.field_out, "--field-out");
+}
+
+nlohmann::json field_json(const DistanceField& f, const std::string& path, bool written,
+                          bool goal_given) {
+  nlohmann::json j;
+  j["file"] = path;
+  j["written"] = written;
+  j["values"] = f.hops ? "hops" : "cost";
+  j["dtype"] = f.hops ? "int32" : "float32";
+  j["shape"] = f.numpy_shape();
+  j["cells"] = f.cells();
+  j["reached"] = f.reached;
+  j["complete"] = f.complete;
+  j["goal_given"] = goal_given;
+  return j;
+}
+
 LoadedMap load_map(const std::string& path, const std::optional<std::vector<int>>& start,
                    Connectivity fallback) {
   const env::MapFormat format = env::map_format_of(path);
@@ -119,13 +150,15 @@ void prepare_grid_run(GridArgs& a, int rank, int ranks, const RunControl& contro
   }
 }
 
-nlohmann::json finish_grid_run(GridReport& report, const GridArgs& a, const RunControl& control) {
+nlohmann::json finish_grid_run(GridReport& report, const GridArgs& a, const RunControl& control,
+                               const nlohmann::json& extra) {
   report.restarted_from = a.options.restart;
   if (report.result.status == Status::interrupted) {
     report.interrupted_by = control.stopped_by();
     report.checkpoint = a.options.checkpoint;
   }
   nlohmann::json json = to_json(report, a.options.keep_path);
+  for (const auto& [key, value] : extra.items()) json[key] = value;
   if (!a.output.empty()) write_file_atomically(a.output, json.dump() + "\n");
   return json;
 }

@@ -92,6 +92,9 @@ class CostClassDijkstra {
     const std::uint64_t start_tile = layout_.tile_of(q_.start);
     goal_tile_ = layout_.tile_of(q_.goal);
     goal_bit_ = Word{1} << layout_.bit_of(q_.goal);
+    // A distance field settles everything reachable whatever the goal.
+    const bool field_run = q_.distances != nullptr;
+    if (field_run) distances_.init(field_, layout_, slabs_, *q_.distances, q_.distances->costs);
     Totals totals;
     const Checkpointing& cp = q_.checkpointing;
     const std::string identity =
@@ -153,6 +156,9 @@ class CostClassDijkstra {
                 s |= fresh;
                 me.settled += static_cast<std::uint64_t>(std::popcount(fresh));
                 if (q_.keep_path) record(b, e.tile, fresh, key);
+                if (field_run)
+                  distances_.write(layout_, slabs_.block_index_of_tile(e.tile), e.tile, fresh,
+                                   static_cast<float>(key.value()));
                 if (e.tile == goal_tile_ && (fresh & goal_bit_)) {
                   me.goal_hit = true;
                   me.goal_key = key;
@@ -211,7 +217,7 @@ class CostClassDijkstra {
               if (maxes[1] == kStopFailed) {
                 failed = true;
                 done = true;
-              } else if (maxes[0]) {
+              } else if (maxes[0] && !field_run) {
                 solved = true;
                 done = true;
               } else if (maxes[1]) {
@@ -260,6 +266,13 @@ class CostClassDijkstra {
     }
 
     rethrow_failure(threads_, team, failed);
+    if (field_run && status == Status::no_path) {
+      // Ran to its end: solved if some rank settled the goal on the way.
+      std::uint64_t hit = 0;
+      for (const Thread& t : threads_) hit |= t.goal_hit ? 1 : 0;
+      tr_.max(std::span<std::uint64_t>(&hit, 1));
+      solved = hit != 0;
+    }
     Counters& k = res.counters;
     std::uint64_t local[2] = {0, 0};
     std::vector<ClassKey> classes;
@@ -581,6 +594,7 @@ class CostClassDijkstra {
   std::vector<std::vector<ClassEntry>> inbox_;  // per thread: what the neighbouring ranks sent it
   std::uint64_t goal_tile_ = 0;
   Word goal_bit_ = 0;
+  DistanceWriter<float> distances_;  // a distance field's part (Query::distances)
 };
 
 }  // namespace hpcplan::dense::detail

@@ -65,6 +65,8 @@ std::uint64_t planned_bytes(const ObstacleSource& field, const Query& q, int ran
     bytes += detail::CostClassDijkstra<2, 2, detail::SeedKernel<2, 2>>::store_bytes(tiles,
                                                                                    q.keep_path);
   }
+  // A distance field's part: a 4-byte value per state of the rank's slab.
+  if (q.distances) bytes += tiles * 64 * 4;
   // A first frontier: one layer's tiles as entries.
   bytes += layout.layer_tiles() * sizeof(detail::Entry);
   return bytes;
@@ -104,6 +106,8 @@ Result search(const ObstacleSource& field, const Query& asked, SlabTransport& tr
     throw std::logic_error("dense::search: start and goal need one coordinate per axis");
   if (!field.is_free(q.start) || !field.is_free(q.goal))
     throw std::logic_error("dense::search: start and goal must be free");
+  if (q.distances && (!q.checkpointing.path.empty() || !q.checkpointing.restart.empty()))
+    throw std::logic_error("dense::search: a distance field takes no checkpoints");
   if (q.connectivity == Connectivity::full && field.dims() > kMaxFullConnectivityDims)
     throw std::logic_error("dense::search: full connectivity is limited to d <= 4");
   const std::uint64_t needed = planned_bytes(field, q, tr.ranks());

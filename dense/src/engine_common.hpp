@@ -164,6 +164,67 @@ std::vector<T> gather_ranks(SlabTransport& tr, T v) {
   return out;
 }
 
+// Writes a distance-field run's values (Query::distances) for this rank's blocks: each block is
+// one run of grid-order cells (its layers' rows of the field's shape), so a settled state's
+// value goes to its run's offset plus its grid index less the run's first. Only the thread that
+// owns a block writes its cells (the states it settles), so no two threads share a run.
+template <class V>
+class DistanceWriter {
+ public:
+  void init(const ObstacleSource& field, const TileLayout& layout, const SlabMap& slabs,
+            Distances& out, std::vector<V>& values) {
+    dims_ = layout.dims();
+    in_tile_ = layout.in_tile_axes();
+    std::int64_t stride = 1;
+    for (int a = 0; a < dims_; ++a) {
+      side_[a] = layout.side(a);
+      stride_[a] = stride;
+      stride *= field.size(a);
+    }
+    const int last = dims_ - 1;
+    const std::int64_t rows = field.size(last);
+    out.runs.clear();
+    base_.assign(slabs.blocks.size(), 0);
+    std::int64_t at = 0;
+    for (std::size_t j = 0; j < slabs.blocks.size(); ++j) {
+      const Block& b = slabs.blocks[j];
+      if (b.rank != slabs.rank) continue;
+      const std::int64_t lo = std::min(rows, b.z0 * side_[last]);
+      const std::int64_t hi = std::min(rows, b.z1 * side_[last]);
+      const std::uint64_t first = static_cast<std::uint64_t>(lo * stride_[last]);
+      const std::uint64_t count = static_cast<std::uint64_t>((hi - lo) * stride_[last]);
+      base_[j] = at - static_cast<std::int64_t>(first);
+      if (count) out.runs.push_back({first, count});
+      at += static_cast<std::int64_t>(count);
+    }
+    values.assign(static_cast<std::size_t>(at), V(-1));
+    values_ = values.data();
+  }
+  // The states `bits` of `tile` (in block j of this rank) have the value v.
+  void write(const TileLayout& layout, int j, std::uint64_t tile, Word bits, V v) const {
+    int t[kMaxDims];
+    layout.tile_coords(tile, t);
+    std::int64_t i = base_[j];
+    for (int a = 0; a < dims_; ++a) i += static_cast<std::int64_t>(t[a]) * side_[a] * stride_[a];
+    V* const out = values_ + i;
+    if (in_tile_ == 1) {
+      for (Word w = bits; w; w &= w - 1) out[std::countr_zero(w)] = v;
+    } else {
+      const std::int64_t row = stride_[1];
+      for (Word w = bits; w; w &= w - 1) {
+        const int bit = std::countr_zero(w);
+        out[(bit & 7) + (bit >> 3) * row] = v;
+      }
+    }
+  }
+
+ private:
+  int dims_ = 1, in_tile_ = 1;
+  std::array<std::int64_t, kMaxDims> side_{}, stride_{};
+  std::vector<std::int64_t> base_;  // per block: its run's offset less its first grid index
+  V* values_ = nullptr;
+};
+
 // Blocks of about this many per worker when block_layers is left to the engine (< 0).
 inline constexpr int kBlocksPerWorker = 4;
 

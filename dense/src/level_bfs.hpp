@@ -57,7 +57,13 @@ class LevelBfs {
     goal_tile_ = layout_.tile_of(q_.goal);
     goal_bit_ = Word{1} << layout_.bit_of(q_.goal);
     const std::uint64_t start_tile = layout_.tile_of(q_.start);
-    const bool trivial = q_.start == q_.goal;
+    // A distance field settles everything reachable whatever the goal.
+    const bool field_run = q_.distances != nullptr;
+    const bool trivial = q_.start == q_.goal && !field_run;
+    // The goal's level, once some level reached it (a distance field goes on past it).
+    bool goal_seen = q_.start == q_.goal;
+    std::uint64_t goal_level = 0;
+    if (field_run) distances_.init(field_, layout_, slabs_, *q_.distances, q_.distances->levels);
     std::uint64_t level = 0;
     std::uint64_t reached_total = 1, peak_level = 1;
     std::uint64_t list_peak = 0;
@@ -111,6 +117,10 @@ class LevelBfs {
               const Word* c = code_words(b, e.tile);
               e.bits = (c[0] | c[1]) & ~e.bits;
               unmark(me, b, e.tile);
+              // These are the states of level lvl: their distance.
+              if (field_run)
+                distances_.write(layout_, slabs_.block_index_of_tile(e.tile), e.tile, e.bits,
+                                 static_cast<std::int32_t>(lvl));
             }
             std::size_t n = 0;
             for (const Entry& e : me.cur) {
@@ -185,16 +195,20 @@ class LevelBfs {
           ++lvl;
           reached += d.fresh;
           peak = std::max(peak, d.fresh);
-          const bool end = d.stop || d.goal || d.next == 0;
+          const bool end = d.stop || (d.goal && !field_run) || d.next == 0;
 #pragma omp master
           {
             level = lvl;
             reached_total = reached;
             peak_level = peak;
             list_peak = std::max(list_peak, d.lists);
+            if (d.goal && !goal_seen) {
+              goal_seen = true;
+              goal_level = lvl;
+            }
             if (d.stop == kStopFailed)
               failed = true;
-            else if (d.goal)
+            else if (d.goal && !field_run)
               solved = true;
             else if (d.stop)
               status = stopped_status(static_cast<std::uint64_t>(d.stop));
@@ -256,9 +270,11 @@ class LevelBfs {
     tr_.sum(std::span<std::uint64_t>(bytes + 1, 1));
     res.figures.bytes_per_rank = bytes[0];
     res.figures.bytes_total = bytes[1];
+    // A distance field that ran to its end (no stop) has solved the query if it reached the goal.
+    if (field_run && status == Status::no_path && goal_seen) solved = true;
     if (solved) {
       res.status = Status::solved;
-      res.path = walk_back(level);
+      res.path = walk_back(field_run ? goal_level : level);
       res.hops = res.path.size() - 1;
       res.cost = path_cost(res.path).value();
     } else {
@@ -497,6 +513,7 @@ class LevelBfs {
   std::vector<std::vector<Entry>> inbox_;  // per thread: what the neighbouring ranks sent it
   std::uint64_t goal_tile_ = 0;
   Word goal_bit_ = 0;
+  DistanceWriter<std::int32_t> distances_;  // a distance field's part (Query::distances)
 };
 
 }  // namespace hpcplan::dense::detail

@@ -221,4 +221,36 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
   return report;
 }
 
+DistanceFieldRun distance_field_distributed(const GridProblem& asked,
+                                            const GridSearchOptions& options,
+                                            const mpi::Communicator& comm) {
+  hpcplan::validate(asked, options);
+  validate_distance_field(asked, options);
+  std::optional<GogField> gog;
+  const ObstacleSource field = obstacles_of(asked, gog);
+  const GridProblem problem = distance_field_problem(field, asked);
+  // The threads and budget every rank can afford (as solve_grid_distributed).
+  const GridReport plan = prepare_grid_report(problem, options, field, comm.ranks_on_node());
+  GridSearchOptions agreed = options;
+  double v[2] = {static_cast<double>(dense_memory_budget(options, plan)),
+                 static_cast<double>(dense_threads(options, comm.ranks_on_node()))};
+  comm.allreduce_min(v);
+  agreed.memory_budget = static_cast<std::uint64_t>(std::min(v[0], 1.8e19));
+  agreed.threads = static_cast<int>(v[1]);
+  MpiSlabTransport transport(comm);
+  DistanceFieldRun run = distance_field(field, problem, agreed, transport, comm.ranks_on_node());
+  run.goal_given = asked.goal.has_value();
+  GridDistribution& dr = run.report.distribution;
+  dr.ranks = comm.size();
+  dr.scheme = comm.size() == 1 ? "serial" : "dense_slabs";
+  const dense::Figures& f = *run.report.dense;
+  dr.per_rank.assign(f.rank_expanded.size(), {});
+  for (std::size_t r = 0; r < dr.per_rank.size(); ++r) {
+    dr.per_rank[r].expanded = f.rank_expanded[r];
+    dr.per_rank[r].search_ms = f.rank_search_ms[r];
+  }
+  finish_grid_report(run.report);
+  return run;
+}
+
 }  // namespace hpcplan::distributed

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hpcplan/cli/run_control.hpp"
+#include "hpcplan/plan/distance_field.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
 
 namespace hpcplan::cli {
@@ -24,6 +25,8 @@ struct GridArgs {
   std::string connectivity = "seed";
   std::string engine = "auto";
   std::string start, goal, output;
+  // --field-out FILE: the distance field of --start (.npy) instead of one query's path.
+  std::string field_out;
   // --map FILE: plan on the occupancy grid of a .map, .3dmap or .npy instead of GOG.
   std::string map;
   double weight = 2.0;
@@ -47,6 +50,17 @@ LoadedMap load_map(const std::string& path, const std::optional<std::vector<int>
 // Registers the problem, search, checkpoint and output options on `command`.
 void add_grid_options(CLI::App* command, GridArgs& args);
 
+// --field-out (the executable's: the Python module does not take it): the whole map's distances
+// from --start as a NumPy .npy (plan/distance_field.hpp).
+void add_field_option(CLI::App* command, GridArgs& args);
+// After prepare_grid_run, with --field-out given: InputError (one line, before any search) for
+// what cannot make a field (A*, weighted A*, --engine sparse, checkpoints) and for a file that
+// cannot be written.
+void check_field_request(const GridArgs& args);
+// The report's part about the field: where it went, its shape, dtype and reached cells.
+nlohmann::json field_json(const DistanceField& field, const std::string& path, bool written,
+                          bool goal_given);
+
 // After parsing: the text options read into the problem and the search's options (InputError
 // for a bad one), --output and this rank's checkpoint file (FILE, or FILE.r<rank> of `ranks`)
 // checked writable, and `control` installed: its cancel always, its interruption with
@@ -55,6 +69,8 @@ void prepare_grid_run(GridArgs& args, int rank, int ranks, const RunControl& con
 
 // The report's checkpoint fields (what it restarted from, what interrupted it and where it was
 // saved), and --output written; returns the report as JSON (`hpcplan grid --json`'s object).
-nlohmann::json finish_grid_run(GridReport& report, const GridArgs& args, const RunControl& control);
+// `extra`'s keys are added to the object (before --output is written).
+nlohmann::json finish_grid_run(GridReport& report, const GridArgs& args, const RunControl& control,
+                               const nlohmann::json& extra = nlohmann::json::object());
 
 }  // namespace hpcplan::cli

@@ -40,6 +40,25 @@ namespace hpcplan::dense {
 
 enum class Algorithm { bfs, dijkstra };
 
+// A distance field's part on one rank (Query::distances): the value of every cell whose last
+// coordinate lies in the layers this rank holds, in grid order (axis 0 fastest, over the
+// field's own shape, ObstacleSource::size), -1 where no state was reached or settled (blocked,
+// unreachable). The rank's cells are runs of consecutive grid-order indices (one per block of
+// layers, in block order), their values concatenated in `levels` or `costs`.
+struct Distances {
+  struct Run {
+    std::uint64_t first = 0, count = 0;
+  };
+  std::vector<Run> runs;
+  std::vector<std::int32_t> levels;  // BFS: the state's level (hop count)
+  std::vector<float> costs;          // Dijkstra: its exact cost (LatticeCost), as float
+  std::uint64_t cells() const {
+    std::uint64_t n = 0;
+    for (const Run& r : runs) n += r.count;
+    return n;
+  }
+};
+
 struct Query {
   std::vector<int> start, goal;  // free lattice states
   Algorithm algorithm = Algorithm::bfs;
@@ -56,6 +75,11 @@ struct Query {
   std::string progress_label;       // non-empty: progress lines (HPCPLAN_PROGRESS=1 or
   double progress_after_s = 2.0;    // a terminal) once the run passes this many seconds
   Checkpointing checkpointing;      // writing checkpoints, restarting from one
+  // Set: a distance-field run. The search does not stop at the goal: it settles every state
+  // the start reaches and writes each one's value into this rank's part (filled by search()),
+  // per level or class, for the states it settles (no extra pass). The goal is still reported
+  // (solved, with its cost and hops, if reached). No checkpoints with it.
+  Distances* distances = nullptr;
 };
 
 // What the engine did beyond the counters.

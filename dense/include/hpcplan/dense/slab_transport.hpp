@@ -10,6 +10,7 @@
 // every rank makes the same calls in the same order.
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <vector>
 
@@ -33,6 +34,27 @@ class SlabTransport {
   virtual void min(std::span<double> values) = 0;
   // Gathers `bytes` bytes from every rank on every rank (rank order).
   virtual std::vector<std::byte> allgather(std::span<const std::byte> mine) = 0;
+  // Every rank's bytes on rank 0, one vector per rank in rank order (empty on the other
+  // ranks): the per-rank parts of a result only rank 0 writes (a distance field). Any size.
+  // This default goes through allgather (every rank receives everything, under 2 GiB in all);
+  // a transport overrides it with a real gather.
+  virtual std::vector<std::vector<std::byte>> gather_to_root(std::span<const std::byte> mine) {
+    const std::uint64_t n = mine.size();
+    const std::vector<std::byte> sizes =
+        allgather(std::as_bytes(std::span<const std::uint64_t>(&n, 1)));
+    const std::vector<std::byte> all = allgather(mine);
+    std::vector<std::vector<std::byte>> out;
+    if (rank() != 0) return out;
+    std::size_t at = 0;
+    for (std::size_t r = 0; r * sizeof n < sizes.size(); ++r) {
+      std::uint64_t k = 0;
+      std::memcpy(&k, sizes.data() + r * sizeof n, sizeof k);
+      out.emplace_back(all.begin() + static_cast<std::ptrdiff_t>(at),
+                       all.begin() + static_cast<std::ptrdiff_t>(at + k));
+      at += k;
+    }
+    return out;
+  }
 
   // What the exchanges cost this rank.
   std::uint64_t messages_sent = 0;
@@ -55,6 +77,9 @@ class LocalTransport final : public SlabTransport {
   void min(std::span<double>) override {}
   std::vector<std::byte> allgather(std::span<const std::byte> mine) override {
     return {mine.begin(), mine.end()};
+  }
+  std::vector<std::vector<std::byte>> gather_to_root(std::span<const std::byte> mine) override {
+    return {std::vector<std::byte>(mine.begin(), mine.end())};
   }
 };
 

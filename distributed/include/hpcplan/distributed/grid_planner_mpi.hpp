@@ -4,6 +4,7 @@
 // arguments; the report is complete on rank 0 (other ranks hold their own share).
 #include "hpcplan/distributed/distributed_search.hpp"
 #include "hpcplan/mpi/communicator.hpp"
+#include "hpcplan/plan/distance_field.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
 
 namespace hpcplan::distributed {
@@ -38,5 +39,12 @@ void validate(const DistGridOptions& options, int extent = 0, int ranks = 0, int
 
 GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOptions& options,
                                   const DistGridOptions& dist, const mpi::Communicator& comm);
+
+// The distance field (plan/distance_field.hpp) over the ranks' slabs of the dense engine: every
+// rank fills its slab's cells, rank 0 gathers them; threads and memory budget agreed as above.
+// Collective; the field is whole on rank 0 only.
+DistanceFieldRun distance_field_distributed(const GridProblem& problem,
+                                            const GridSearchOptions& options,
+                                            const mpi::Communicator& comm);
 
 }  // namespace hpcplan::distributed

@@ -38,6 +38,8 @@ class MpiSlabTransport final : public dense::SlabTransport {
   std::vector<std::byte> allgather(std::span<const std::byte> mine) override {
     return comm_.allgather(mine);
   }
+  // MPI_Gather of the sizes, then each rank's bytes to rank 0 in messages under 1 GiB.
+  std::vector<std::vector<std::byte>> gather_to_root(std::span<const std::byte> mine) override;
 
  private:
   template <class F>
