@@ -10,8 +10,8 @@
 namespace hpcplan {
 namespace {
 
-constexpr int kMaxGridDims = 16;      // as the lattice engines (packed_key.hpp's kMaxDims)
-constexpr int kMaxGridSide = 65535;   // as the lattice engines (kMaxExtent)
+constexpr int kMaxGridDims = 16;     // as the lattice engines (packed_key.hpp's kMaxDims)
+constexpr int kMaxGridSide = 65535;  // as the lattice engines (kMaxExtent)
 
 }  // namespace
 
@@ -49,7 +49,8 @@ OccupancyGrid::OccupancyGrid(std::vector<int> shape) : shape_(std::move(shape)) 
     for (std::uint64_t x = 0; x < width;) {
       const std::uint64_t bit = row + x;
       const std::uint64_t n = std::min<std::uint64_t>(width - x, 64 - (bit & 63));
-      words_[bit >> 6] |= (n == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << n) - 1)) << (bit & 63);
+      words_[bit >> 6] |= (n == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << n) - 1))
+                          << (bit & 63);
       x += n;
     }
 }
@@ -79,7 +80,7 @@ void OccupancyGrid::set_free(std::span<const int> c, bool free) {
   if (!inside(c)) throw std::out_of_range("OccupancyGrid::set_free: cell outside the shape");
   const std::uint64_t bit = index(c.data());
   const std::uint64_t mask = std::uint64_t{1} << (bit & 63);
-  sealed_ = false;
+  if (sealed_) unseal();
   if (free)
     words_[bit >> 6] |= mask;
   else
@@ -87,10 +88,30 @@ void OccupancyGrid::set_free(std::span<const int> c, bool free) {
 }
 
 void OccupancyGrid::seal() {
-  sealed_ = false;
+  unseal();
   free_cells_ = free_cells();
   checksum_ = compute_checksum();
+  if (dims() == 2) {
+    const auto width = static_cast<std::uint64_t>(shape_[0]);
+    const auto height = static_cast<std::uint64_t>(shape_[1]);
+    column_bits_ = (height + 63) / 64 * 64;
+    transposed_.assign(width * column_bits_ / 64, 0);
+    const auto row = static_cast<std::uint64_t>(stride_[1]);
+    for (std::uint64_t y = 0; y < height; ++y)
+      for (std::uint64_t x = 0; x < width; ++x)
+        if (free_at(y * row + x)) {
+          const std::uint64_t bit = x * column_bits_ + y;
+          transposed_[bit >> 6] |= std::uint64_t{1} << (bit & 63);
+        }
+  }
   sealed_ = true;
+}
+
+void OccupancyGrid::unseal() {
+  sealed_ = false;
+  transposed_.clear();
+  transposed_.shrink_to_fit();
+  column_bits_ = 0;
 }
 
 std::uint64_t OccupancyGrid::compute_checksum() const {

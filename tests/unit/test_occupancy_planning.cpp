@@ -484,3 +484,51 @@ TEST(OccupancyProblem, BadEndsAreOneLineInputErrors) {
 
 }  // namespace
 }  // namespace hpcplan
+
+namespace hpcplan {
+namespace {
+
+TEST(OccupancyJumpPoints, WordScansEqualDijkstraOnNarrowAndWideGrids) {
+  // Widths around the word and packing boundaries (rows under 32 cells are packed, not padded),
+  // heights around the transposed columns' word; random obstacles; jump-point A* (word scans
+  // along x and along the sealed grid's columns) against Dijkstra on the same grid, and against
+  // A* on an unsealed copy (scans along y cell by cell).
+  int compared = 0;
+  for (const auto& [w, h] : std::vector<std::pair<int, int>>{
+           {5, 70}, {31, 31}, {33, 65}, {64, 64}, {65, 40}, {130, 129}, {200, 7}}) {
+    SCOPED_TRACE(std::to_string(w) + " x " + std::to_string(h));
+    const Cells cells = random_cells({w, h}, 0.3, static_cast<std::uint64_t>(w * 1000 + h));
+    const auto grid = as_grid(cells);
+    auto unsealed = std::make_shared<OccupancyGrid>(*grid);
+    unsealed->set_free(std::vector<int>{0, 0}, grid->is_free(std::vector<int>{0, 0}));
+    ASSERT_TRUE(unsealed->transposed().empty());
+    std::mt19937_64 rng(static_cast<std::uint64_t>(w + h));
+    for (int q = 0; q < 40; ++q) {
+      const auto s = random_free(cells, rng), g = random_free(cells, rng);
+      GridSearchOptions dijkstra;
+      dijkstra.algorithm = GridAlgorithm::dijkstra;
+      dijkstra.engine = GridEngine::sparse;
+      GridProblem p = occupancy_problem(grid);
+      p.start = s;
+      p.goal = g;
+      const GridReport want = solve_grid(p, dijkstra);
+      const GridReport jps = solve_grid(p, GridSearchOptions{});
+      ASSERT_EQ(jps.options.pruning, "jump_points");
+      GridProblem pu = occupancy_problem(unsealed);
+      pu.start = s;
+      pu.goal = g;
+      const GridReport cellwise = solve_grid(pu, GridSearchOptions{});
+      ASSERT_EQ(jps.result.status, want.result.status);
+      ASSERT_EQ(cellwise.result.status, want.result.status);
+      if (want.result.status == Status::solved) {
+        EXPECT_NEAR(jps.result.cost, want.result.cost, 1e-9 * (1 + want.result.cost));
+        EXPECT_NEAR(cellwise.result.cost, want.result.cost, 1e-9 * (1 + want.result.cost));
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(compared, 100);
+}
+
+}  // namespace
+}  // namespace hpcplan

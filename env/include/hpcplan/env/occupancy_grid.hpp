@@ -63,7 +63,7 @@ class OccupancyGrid {
   // Marks the cell of bit index `bit` (in shape) blocked; loaders write whole rows this way.
   void block_at(std::uint64_t bit) {
     words_[bit >> 6] &= ~(std::uint64_t{1} << (bit & 63));
-    sealed_ = false;
+    if (sealed_) unseal();
   }
 
   const std::uint64_t* words() const { return words_.data(); }
@@ -71,9 +71,18 @@ class OccupancyGrid {
   // Free cells, and FNV-1a over the shape and the bits (a checkpoint's identity and a report's
   // fingerprint): computed by seal(), which loaders call once the grid is written, so every
   // query reads them for free; on a grid changed since, computed afresh on each call.
-  std::uint64_t free_cells() const { return sealed_ ? free_cells_ : count_free(0, words_.size() * 64); }
+  std::uint64_t free_cells() const {
+    return sealed_ ? free_cells_ : count_free(0, words_.size() * 64);
+  }
   std::uint64_t checksum() const { return sealed_ ? checksum_ : compute_checksum(); }
+  // Also builds a 2D grid's columns as rows of their own (transposed(), below).
   void seal();
+
+  // A sealed 2D grid's cells column by column: bit y of column x at x * column_bits() + y
+  // (columns padded to whole words), so a search can scan along y a word at a time as it does
+  // along x. Empty for other grids (1 bit more per cell, for 2D maps only).
+  const std::vector<std::uint64_t>& transposed() const { return transposed_; }
+  std::uint64_t column_bits() const { return column_bits_; }
   std::uint64_t bytes() const { return words_.size() * sizeof(std::uint64_t); }
 
   // Where the grid came from, for reports and errors: the file's name (or "array") and its
@@ -83,9 +92,12 @@ class OccupancyGrid {
 
  private:
   std::uint64_t compute_checksum() const;
+  void unseal();
 
   std::vector<int> shape_;
   bool sealed_ = false;
+  std::vector<std::uint64_t> transposed_;
+  std::uint64_t column_bits_ = 0;
   std::uint64_t free_cells_ = 0, checksum_ = 0;
   int extent_ = 2;
   std::uint64_t cells_ = 0;
@@ -96,6 +108,7 @@ class OccupancyGrid {
 // A grid from a C-contiguous array of bytes (nonzero = blocked) whose NumPy shape is
 // `array_shape` (first axis slowest): the grid's axis 0 is the array's last axis. Reads the
 // bytes in place; InputError on an empty or over-large shape.
-OccupancyGrid occupancy_from_bytes(const std::uint8_t* data, std::span<const std::int64_t> array_shape);
+OccupancyGrid occupancy_from_bytes(const std::uint8_t* data,
+                                   std::span<const std::int64_t> array_shape);
 
 }  // namespace hpcplan

@@ -29,6 +29,7 @@
 //
 // Threads: a graph belongs to one run (its check counter is a plain member).
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <cstdlib>
 #include <span>
@@ -73,11 +74,19 @@ class GogCells2D {
 
 // The cells of a 2D occupancy grid: one bit each. Cells past the grid's sides (inside the
 // square lattice of its larger side) are blocked.
+//
+// A straight jump scans its line a word at a time (the "block-based" jumps of Harabor and
+// Grastien, ICAPS 2014): 64 cells of the line and of its two side lines are read at once, a
+// forced side is a side cell free whose predecessor along the run is blocked (side & ~shifted
+// side), and the first blocked cell, forced cell or the goal ends the run. Along x the lines are
+// the grid's rows; along y the sealed grid's columns (OccupancyGrid::transposed); an unsealed
+// grid scans along y cell by cell.
 class OccupancyCells2D {
  public:
   explicit OccupancyCells2D(const OccupancyGrid& grid)
       : grid_(grid),
         words_(grid.words()),
+        word_count_(grid.word_count()),
         row_bits_(grid.dims() == 2 ? static_cast<std::uint64_t>(grid.stride(1)) : 0),
         width_(static_cast<unsigned>(grid.size(0))),
         height_(grid.dims() == 2 ? static_cast<unsigned>(grid.size(1)) : 0),
@@ -96,9 +105,114 @@ class OccupancyCells2D {
     return grid_.is_free(std::span<const int>(c, 2));
   }
 
+  // The straight run from (a, b) along Axis (a the coordinate along it, b across) in direction
+  // s: the number of steps to the first cell that is the goal (goal_a, on this line when
+  // goal_on_line) or has a forced side, or 0 if a blocked cell or the edge comes first. `cells`
+  // grows by the cells the scan covered (the collision checks it stands for).
+  template <int Axis>
+  [[gnu::always_inline]] int scan(int a, int b, int s, bool goal_on_line, int goal_a,
+                                  std::uint64_t& cells) const {
+    if (Axis == 1 && grid_.transposed().empty())
+      return scan_cells(a, b, s, goal_on_line, goal_a, cells);
+    const Line here = line<Axis>(b), low = line<Axis>(b - 1), high = line<Axis>(b + 1);
+    if (s > 0) {
+      for (int p = a + 1;; p += 64) {
+        if (p >= here.length) return 0;
+        const std::uint64_t c = here.get(p), lo = low.get(p), hi = high.get(p);
+        const std::uint64_t forced = (lo & ~low.get(p - 1)) | (hi & ~high.get(p - 1));
+        std::uint64_t event = forced;
+        if (goal_on_line && goal_a >= p && goal_a < p + 64)
+          event |= std::uint64_t{1} << (goal_a - p);
+        event &= c;
+        const std::uint64_t blocked = ~c;
+        cells += 3 * 64;
+        if (blocked == 0 && event == 0) continue;
+        const int first_event = event ? std::countr_zero(event) : 64;
+        const int first_block = blocked ? std::countr_zero(blocked) : 64;
+        return first_event < first_block ? p + first_event - a : 0;
+      }
+    }
+    for (int p = a - 1;; p -= 64) {
+      if (p < 0) return 0;
+      const int q = p - 63;  // the window's lowest position (may be negative: reads 0 there)
+      const std::uint64_t c = here.get(q), lo = low.get(q), hi = high.get(q);
+      const std::uint64_t forced = (lo & ~low.get(q + 1)) | (hi & ~high.get(q + 1));
+      std::uint64_t event = forced;
+      if (goal_on_line && goal_a <= p && goal_a > p - 64) event |= std::uint64_t{1} << (goal_a - q);
+      event &= c;
+      const std::uint64_t blocked = ~c;
+      cells += 3 * 64;
+      if (blocked == 0 && event == 0) continue;
+      const int last_event = event ? 63 - std::countl_zero(event) : -1;
+      const int last_block = blocked ? 63 - std::countl_zero(blocked) : -1;
+      return last_event > last_block ? a - (q + last_event) : 0;
+    }
+  }
+
  private:
+  // One line of cells (a row, or a sealed grid's column) as bits; positions outside [0, length)
+  // and lines outside the grid read as blocked.
+  struct Line {
+    const std::uint64_t* words = nullptr;
+    std::uint64_t count = 0;  // words of the whole array (reads stay inside it)
+    std::uint64_t start = 0;  // bit index of position 0
+    int length = 0;
+    // Bits of positions p .. p + 63 (bit i: position p + i).
+    [[gnu::always_inline]] std::uint64_t get(int p) const {
+      if (words == nullptr || p >= length || p <= -64) return 0;
+      std::uint64_t v;
+      if (p < 0) {
+        v = read(start) << (-p);
+      } else {
+        v = read(start + static_cast<std::uint64_t>(p));
+      }
+      const int left = length - p;  // positions p .. length - 1 are in the line
+      return left >= 64 ? v : v & ((std::uint64_t{1} << left) - 1);
+    }
+    [[gnu::always_inline]] std::uint64_t read(std::uint64_t bit) const {
+      const std::uint64_t w = bit >> 6;
+      const int shift = static_cast<int>(bit & 63);
+      std::uint64_t v = words[w] >> shift;
+      if (shift != 0 && w + 1 < count) v |= words[w + 1] << (64 - shift);
+      return v;
+    }
+  };
+  template <int Axis>
+  [[gnu::always_inline]] Line line(int b) const {
+    Line l;
+    if (Axis == 0) {
+      if (static_cast<unsigned>(b) >= height_) return l;
+      l.words = words_;
+      l.count = word_count_;
+      l.start = static_cast<std::uint64_t>(b) * row_bits_;
+      l.length = static_cast<int>(width_);
+    } else {
+      if (static_cast<unsigned>(b) >= width_) return l;
+      l.words = grid_.transposed().data();
+      l.count = grid_.transposed().size();
+      l.start = static_cast<std::uint64_t>(b) * grid_.column_bits();
+      l.length = static_cast<int>(height_);
+    }
+    return l;
+  }
+  // Along y on an unsealed grid: the cell-by-cell run.
+  int scan_cells(int a, int b, int s, bool goal_on_line, int goal_a, std::uint64_t& cells) const {
+    bool low_before = free(b - 1, a), high_before = free(b + 1, a);
+    for (int n = 1;; ++n) {
+      a += s;
+      cells += 3;
+      if (!free(b, a)) return 0;
+      if (goal_on_line && a == goal_a) return n;
+      const bool low = free(b - 1, a), high = free(b + 1, a);
+      if ((low && !low_before) || (high && !high_before)) return n;
+      low_before = low;
+      high_before = high;
+    }
+  }
+
   const OccupancyGrid& grid_;
   const std::uint64_t* words_;
+  std::uint64_t word_count_;
   std::uint64_t row_bits_;
   unsigned width_, height_;
   int extent_;
@@ -254,6 +368,9 @@ class JumpPointGraph {
   template <int Axis>
   [[gnu::always_inline]] int jump_straight(int a, int b, int s, std::uint64_t& checks) const {
     const int goal_a = Axis == 0 ? goal_x_ : goal_y_, goal_b = Axis == 0 ? goal_y_ : goal_x_;
+    // Cells that can scan a line a word at a time do (OccupancyCells2D).
+    if constexpr (requires { cells_.template scan<Axis>(a, b, s, true, goal_a, checks); })
+      return cells_.template scan<Axis>(a, b, s, b == goal_b, goal_a, checks);
     const bool low_side = b > 0, high_side = b + 1 < extent_;
     // Whether the side cells beside the previous cell are free.
     bool low_before = low_side && free_along<Axis>(a, b - 1);
