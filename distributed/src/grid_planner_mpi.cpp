@@ -233,7 +233,7 @@ DistanceFieldRun distance_field_distributed(const GridProblem& asked,
   const GridReport plan = prepare_grid_report(problem, options, field, comm.ranks_on_node());
   GridSearchOptions agreed = options;
   double v[2] = {static_cast<double>(dense_memory_budget(options, plan)),
-                 static_cast<double>(dense_threads(options, comm.ranks_on_node()))};
+                 static_cast<double>(distance_field_threads(field, options, comm.ranks_on_node()))};
   comm.allreduce_min(v);
   agreed.memory_budget = static_cast<std::uint64_t>(std::min(v[0], 1.8e19));
   agreed.threads = static_cast<int>(v[1]);

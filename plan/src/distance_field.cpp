@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <optional>
 
@@ -53,6 +54,17 @@ void unpack(const std::vector<std::byte>& bytes, std::vector<V>& whole) {
 }
 
 }  // namespace
+
+int distance_field_threads(const ObstacleSource& field, const GridSearchOptions& o,
+                           int ranks_sharing_memory) {
+  if (o.threads > 0) return o.threads;
+  const int most = dense_threads(o, ranks_sharing_memory);
+  double free = 1.0 - field.blocked_fraction();
+  for (int a = 0; a < field.dims(); ++a) free *= field.size(a);
+  const double per_level = free / std::max(1, field.extent());
+  const double wanted = std::floor(per_level / kFieldStatesPerThreadLevel);
+  return static_cast<int>(std::clamp(wanted, 1.0, static_cast<double>(std::max(1, most))));
+}
 
 std::uint64_t DistanceField::cells() const {
   std::uint64_t n = 1;
@@ -121,7 +133,7 @@ DistanceFieldRun distance_field(const ObstacleSource& field, const GridProblem& 
   q.goal = report.problem.goal;
   q.algorithm = hops ? dense::Algorithm::bfs : dense::Algorithm::dijkstra;
   q.connectivity = problem.connectivity;
-  q.threads = dense_threads(o, ranks_sharing_memory);
+  q.threads = distance_field_threads(field, o, ranks_sharing_memory);
   q.keep_path = o.keep_path;
   q.block_layers = o.contiguous_slabs ? 0 : o.slab_layers > 0 ? o.slab_layers : -1;
   q.memory_budget = dense_memory_budget(o, report);

@@ -350,6 +350,21 @@ TEST(DistanceField, NpyBytes) {
   }
 }
 
+TEST(DistanceField, ThreadsFollowTheLevelsWidthUnlessGiven) {
+  // A 2D map's levels are a few hundred states: one thread (more only wait at the barriers).
+  const OccupancyGrid map = env::load_occupancy(movingai_dir() + "/Boston_0_256.map");
+  GridSearchOptions o;
+  EXPECT_EQ(distance_field_threads(map, o, 1), 1);
+  o.threads = 3;
+  EXPECT_EQ(distance_field_threads(map, o, 1), 3);  // --threads is obeyed
+  // A wide lattice: one per 32768 states of the average level, at most the process's cores.
+  OccupancyGrid wide({256, 256, 256});
+  wide.seal();
+  o.threads = 0;
+  const int cores = dense_threads(o, 1);
+  EXPECT_EQ(distance_field_threads(wide, o, 1), std::min(cores, 65536 / 32768));
+}
+
 TEST(DistanceField, RefusesWhatCannotMakeAField) {
   GridProblem problem = occupancy_problem(std::make_shared<OccupancyGrid>(std::vector<int>{8, 8}));
   GridSearchOptions o;
