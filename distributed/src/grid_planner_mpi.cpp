@@ -157,7 +157,7 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
   GridSearchOptions agreed = options;
   {
     double v[2] = {static_cast<double>(dense_memory_budget(options, report)),
-                   static_cast<double>(dense_threads(options, comm.ranks_on_node()))};
+                   static_cast<double>(dense_threads(field, options, comm.ranks_on_node()))};
     comm.allreduce_min(v);
     agreed.memory_budget = static_cast<std::uint64_t>(std::min(v[0], 1.8e19));
     agreed.threads = static_cast<int>(v[1]);

@@ -57,13 +57,7 @@ void unpack(const std::vector<std::byte>& bytes, std::vector<V>& whole) {
 
 int distance_field_threads(const ObstacleSource& field, const GridSearchOptions& o,
                            int ranks_sharing_memory) {
-  if (o.threads > 0) return o.threads;
-  const int most = dense_threads(o, ranks_sharing_memory);
-  double free = 1.0 - field.blocked_fraction();
-  for (int a = 0; a < field.dims(); ++a) free *= field.size(a);
-  const double per_level = free / std::max(1, field.extent());
-  const double wanted = std::floor(per_level / kFieldStatesPerThreadLevel);
-  return static_cast<int>(std::clamp(wanted, 1.0, static_cast<double>(std::max(1, most))));
+  return dense_threads(field, o, ranks_sharing_memory);
 }
 
 std::uint64_t DistanceField::cells() const {

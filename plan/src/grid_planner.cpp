@@ -74,9 +74,20 @@ int dense_threads(const GridSearchOptions& options, int ranks_sharing_memory) {
   return std::max(1, cores / std::max(1, ranks_sharing_memory));
 }
 
+int dense_threads(const ObstacleSource& field, const GridSearchOptions& o,
+                  int ranks_sharing_memory) {
+  if (o.threads > 0) return o.threads;
+  const int most = dense_threads(o, ranks_sharing_memory);
+  double free = 1.0 - field.blocked_fraction();
+  for (int a = 0; a < field.dims(); ++a) free *= field.size(a);
+  const double per_level = free / std::max(1, field.extent());
+  const double wanted = std::floor(per_level / kDenseStatesPerThreadLevel);
+  return static_cast<int>(std::clamp(wanted, 1.0, static_cast<double>(std::max(1, most))));
+}
+
 namespace {
 
-dense::Query dense_query(const ObstacleSource&, const GridProblem& problem, const GridSearchOptions& o,
+dense::Query dense_query(const ObstacleSource& field, const GridProblem& problem, const GridSearchOptions& o,
                          const GridReport& report, int ranks_sharing_memory) {
   dense::Query q;
   q.start = report.problem.start;
@@ -84,7 +95,7 @@ dense::Query dense_query(const ObstacleSource&, const GridProblem& problem, cons
   q.algorithm =
       o.algorithm == GridAlgorithm::bfs ? dense::Algorithm::bfs : dense::Algorithm::dijkstra;
   q.connectivity = problem.connectivity;
-  q.threads = dense_threads(o, ranks_sharing_memory);
+  q.threads = dense_threads(field, o, ranks_sharing_memory);
   q.keep_path = o.keep_path;
   q.block_layers = o.contiguous_slabs ? 0 : o.slab_layers > 0 ? o.slab_layers : -1;
   q.memory_budget = dense_memory_budget(o, report);
@@ -117,7 +128,7 @@ bool dense_fits(const ObstacleSource& field, const GridSearchOptions& options, c
       options.algorithm == GridAlgorithm::bfs ? dense::Algorithm::bfs : dense::Algorithm::dijkstra;
   q.connectivity = parse_connectivity(report.problem.connectivity);
   q.keep_path = options.keep_path;
-  q.threads = dense_threads(options, 1);
+  q.threads = dense_threads(field, options, 1);
   q.block_layers = options.contiguous_slabs  ? 0
                    : options.slab_layers > 0 ? options.slab_layers
                                              : -1;

@@ -59,6 +59,43 @@ or level (with checkpoint=, the dense search stops at its next level with the ch
 written), and KeyboardInterrupt is raised. Bad options raise ValueError with the CLI's message.""")
 
 
+_DISTANCE = _options.Options(_TABLE, exclude=("algo", "weight", "heuristic", "no_jump_points",
+                                            "checkpoint", "checkpoint_every", "restart", "path"),
+                             sequences=("start", "goal"))
+_ALGO = inspect.Parameter("algo", inspect.Parameter.KEYWORD_ONLY, default="bfs", annotation=str)
+
+
+def distance_field(**kwargs):
+    given = _options.bind(_DISTANCE_SIGNATURE, "distance_field", kwargs)
+    stop = given.pop("stop", None)
+    occupancy = given.pop("occupancy", None)
+    with_report = given.pop("report", False)
+    algo = _options.text("algo", given.pop("algo", "bfs"))
+    tokens = _DISTANCE.tokens(given) + [f"--algo={algo}"]
+    report, values = _hpcplan.grid_distance_field(tokens, stop, occupancy)
+    return (values, report) if with_report else values
+
+
+_REPORT = inspect.Parameter("report", inspect.Parameter.KEYWORD_ONLY, default=False,
+                            annotation=bool)
+_DISTANCE_SIGNATURE = _options.make(
+    distance_field, _DISTANCE, leading=(), trailing=(_ALGO, _OCCUPANCY, _REPORT, _options.STOP),
+    extra_doc="""algo : str, default bfs, one of bfs, dijkstra
+    bfs: each cell's hop count (int32); dijkstra: its path cost (float32)
+""" + _OCCUPANCY_DOC + """
+report : bool, default False
+    Also return the run's report (hpcplan grid --json's keys, with field_complete and
+    field_reached): (values, report).
+""" + _options.STOP_DOC, summary="""
+The distance field of start: every cell's distance from it, as ``hpcplan grid --field-out``
+writes it, on an array (occupancy=), a map file (map=) or the GOG field; returns a NumPy array
+in NumPy order (the map's or the array's shape: a[y, x]): int32 hop counts (algo="bfs") or
+float32 path costs (algo="dijkstra"), -1 for blocked and unreachable cells. start is x first.
+The dense engine settles every reachable cell (goal is optional, and only reported). A stop,
+time_limit or max_states ends it early: the cells not settled then read -1, and report=True's
+field_complete is False. The GIL is released; Ctrl-C raises KeyboardInterrupt.""")
+
+
 def load_map(path, terrain="ground"):
     """The occupancy grid of a map file as a new NumPy bool array (True = blocked), read by the
     engine's own parser (what ``hpcplan grid --map`` plans on).

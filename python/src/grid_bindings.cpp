@@ -15,6 +15,7 @@
 #include "hpcplan/env/gog.hpp"
 #include "hpcplan/env/occupancy_grid.hpp"
 #include "hpcplan/env/occupancy_io.hpp"
+#include "hpcplan/plan/distance_field.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
 
 namespace hpcplan::python {
@@ -281,6 +282,59 @@ py::tuple solve(const std::vector<std::string>& tokens, const StopSource* stop,
   return py::make_tuple(to_python(answer.json), path);
 }
 
+// `values` moved into a capsule that owns it and viewed as a NumPy array of `shape` (C order):
+// the field's own memory, no copy.
+template <class T>
+py::array owning_array(std::vector<T>&& values, const std::vector<std::int64_t>& shape) {
+  auto* owned = new std::vector<T>(std::move(values));
+  py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(std::vector<py::ssize_t>(shape.begin(), shape.end()), owned->data(), owner);
+}
+
+// The distance field of the options' start (plan/distance_field.hpp) on the GOG field, a map
+// file or the array `array`: the grid report as JSON, and the field as a NumPy array in NumPy
+// order (int32 hops for BFS, float32 costs for Dijkstra, -1 where none).
+py::tuple distance_field_of(const std::vector<std::string>& tokens, const StopSource* stop,
+                            const py::object& array) {
+  auto a = std::make_shared<cli::GridArgs>(parse_cached<cli::GridArgs>(
+      "hpcplan grid", tokens,
+      [](CLI::App* c, cli::GridArgs& args) { cli::add_grid_options(c, args); }));
+  std::optional<ArrayBytes> bytes;
+  if (!array.is_none()) {
+    bytes = occupancy_bytes(array);
+    refuse_gog_options(*a);
+    a->dims_option = nullptr;
+  }
+  a->options.threads = call_threads(a->options.threads);
+  struct Answer {
+    DistanceFieldRun run;
+    nlohmann::json json;
+  };
+  Answer answer = call_released<Answer>(
+      [&](const cli::RunControl& control) {
+        cli::prepare_grid_run(*a, 0, 1, control);
+        if (bytes) {
+          GridProblem p = occupancy_problem(grid_of(*bytes), a->problem.connectivity);
+          p.start = std::move(a->problem.start);
+          p.goal = std::move(a->problem.goal);
+          a->problem = std::move(p);
+        }
+        Answer r;
+        r.run = distance_field(a->problem, a->options);
+        r.json = cli::finish_grid_run(r.run.report, *a, control);
+        r.json.erase("path");
+        r.json["field_complete"] = r.run.field.complete;
+        r.json["field_reached"] = r.run.field.reached;
+        return r;
+      },
+      stop, OnCtrlC::cancel);
+  DistanceField& f = answer.run.field;
+  const std::vector<std::int64_t> shape = f.numpy_shape();
+  py::array values =
+      f.hops ? owning_array(std::move(f.levels), shape) : owning_array(std::move(f.costs), shape);
+  return py::make_tuple(to_python(answer.json), values);
+}
+
 }  // namespace
 
 void bind_grid(py::module_& m) {
@@ -294,6 +348,8 @@ void bind_grid(py::module_& m) {
          const py::object& occupancy) { return solve(tokens, stop, nullptr, occupancy); },
       py::arg("tokens"), py::arg("stop") = nullptr, py::arg("occupancy") = py::none());
   m.def("load_map", &load_map_array, py::arg("path"), py::arg("terrain") = "ground");
+  m.def("grid_distance_field", &distance_field_of, py::arg("tokens"), py::arg("stop") = nullptr,
+        py::arg("occupancy") = py::none());
 
   // A GOG field's parameter, None on an occupancy grid.
   auto gog = [](auto get) {

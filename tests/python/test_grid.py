@@ -167,7 +167,7 @@ def test_empty_texts_are_what_the_cli_makes_of_them(tmp_path):
 
 
 def test_wrong_types_are_type_errors():
-    with pytest.raises(TypeError, match=r"solve\(\) missing a required argument: 'dims'"):
+    with pytest.raises(ValueError, match=r"--dims is required \(or --map FILE to plan on a map\)"):
         hpcplan.grid.solve()
     with pytest.raises(TypeError, match="unexpected keyword argument 'dim'"):
         hpcplan.grid.solve(dims=2, dim=2)

@@ -36,7 +36,7 @@ IGNORE = TIMING_KEYS | {"max_states", "path"}
 def movingai(name):
     path = os.path.join(MOVINGAI, name)
     if not os.path.exists(path):
-        pytest.skip(f"the MovingAI benchmark file {path} is absent (HPCPLAN_MOVINGAI_DIR)")
+        pytest.fail(f"the MovingAI benchmark file {path} is absent (HPCPLAN_MOVINGAI_DIR)")
     return path
 
 
@@ -475,3 +475,19 @@ def test_the_signatures_and_docs_name_the_new_arguments():
     assert list(run)[0] == "scenario" and {"map", "algo", "buckets", "rows", "stop"} <= set(run)
     assert "occupancy" in inspect.signature(hpcplan.grid.Field).parameters
     assert "(H, W)" in hpcplan.grid.load_map.__doc__
+
+
+@pytest.mark.parametrize("algo", ["bfs", "dijkstra"])
+def test_distance_field_is_the_cli_field_out_file(algo, tmp_path):
+    # The same field from a map path, from its array and from hpcplan grid --field-out.
+    path = movingai("Boston_0_256.map")
+    out = tmp_path / "field.npy"
+    run_cli("grid", "--map", path, "--start", "188,1", "--algo", algo, "--field-out", str(out))
+    want = np.load(out)
+    by_path = hpcplan.grid.distance_field(map=path, start=(188, 1), algo=algo)
+    by_array = hpcplan.grid.distance_field(occupancy=hpcplan.grid.load_map(path),
+                                           start=(188, 1), algo=algo)
+    assert by_path.dtype == want.dtype == (np.int32 if algo == "bfs" else np.float32)
+    assert by_path.shape == want.shape == (256, 256)
+    assert np.array_equal(by_path, want) and np.array_equal(by_array, want)
+    assert by_path[1, 188] == 0 and (by_path == -1).any() and (by_path > 0).any()

@@ -220,10 +220,10 @@ TEST_P(EveryRow, DenseDijkstraIsOptimalOnASample) {
   o.algorithm = GridAlgorithm::dijkstra;
   o.engine = GridEngine::dense;
   o.threads = 2;
-  // About 12 rows a map (a dense query floods much of the map).
+  // About 200 rows a map (a dense query floods much of the map: milliseconds each).
   check_rows(
       l,
-      every(l.scenario, std::max<std::size_t>(1, l.scenario.rows.size() / 12) * kSanitizedStride),
+      every(l.scenario, std::max<std::size_t>(1, l.scenario.rows.size() / 200) * kSanitizedStride),
       o);
 }
 

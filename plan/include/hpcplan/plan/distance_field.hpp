@@ -51,15 +51,8 @@ void validate_distance_field(const GridProblem& problem, const GridSearchOptions
 // start's own default, adjusted, when that is not given either).
 GridProblem distance_field_problem(const ObstacleSource& field, const GridProblem& problem);
 
-// The OpenMP threads of a field run: --threads when given; else one per
-// kFieldStatesPerThreadLevel states of the average level (the free states over the extent: a
-// wavefront crosses the lattice in about `extent` levels), at least one and at most this
-// process's share of the cores (dense_threads). Each level or cost bucket ends at two to four
-// barriers; a 2D map's level is a few hundred states (microseconds of work), so extra threads
-// only wait there, and where the cores are shared with other processes a waiting thread that
-// spins holds up the one doing the work (measured on a busy 2-core VM: 64room_005's Dijkstra
-// field 34 ms on one thread, 5.0 s on two).
-inline constexpr double kFieldStatesPerThreadLevel = 32768;
+// The OpenMP threads of a field run: those of any dense run on the field (grid_planner.hpp's
+// dense_threads).
 int distance_field_threads(const ObstacleSource& field, const GridSearchOptions& options,
                            int ranks_sharing_memory);
 

@@ -121,6 +121,17 @@ GridReport prepare_grid_report(const GridProblem& problem, const GridSearchOptio
 // the lattice graph).
 std::uint64_t dense_memory_budget(const GridSearchOptions& options, const GridReport& report);
 int dense_threads(const GridSearchOptions& options, int ranks_sharing_memory);
+// The threads a dense run on `field` uses: --threads when given; else one per
+// kDenseStatesPerThreadLevel states of the average level (the free states over the extent: a
+// wavefront crosses the lattice in about `extent` levels), at least one and at most
+// dense_threads(). Each level or cost bucket ends at two to four barriers; a 2D map's level is a
+// few hundred states (microseconds of work), so extra threads only wait there, and where the
+// cores are shared with other processes a waiting thread that spins holds up the one doing the
+// work (measured on a busy 2-core VM: 64room_005's Dijkstra field 34 ms on one thread, 5.0 s on
+// two). Large lattices (3D and up, GOG's high dimensions) keep every core.
+inline constexpr double kDenseStatesPerThreadLevel = 32768;
+int dense_threads(const ObstacleSource& field, const GridSearchOptions& options,
+                  int ranks_sharing_memory);
 bool dense_fits(const ObstacleSource& field, const GridSearchOptions& options, const GridReport& report,
                 int ranks);
 bool uses_dense_engine(const ObstacleSource& field, const GridSearchOptions& options,
