@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The per-map benchmark against a textbook A* (bench/movingai_bench.cpp, docs/MAPS_BENCH.md):
+# The per-map benchmark against a textbook A* (bench/movingai_bench.cpp, docs/MAPS.md):
 # hpcplan_movingai_bench over every MovingAI scenario found, one map at a time (never two timing
 # jobs at once). Writes results/movingai/ (not committed: results/ is ignored but for seed000):
 #   <map>.groups.csv   per bucket group: median µs of each engine, textbook / ours ratios
