@@ -104,5 +104,15 @@ grep -q "1 mismatches" "$tmp/out" || { echo "test_maps_cli: FAIL mismatch summar
 [[ $(sed -n 2p "$tmp/wrong.csv" | awk -F, '{print $NF}') == 1 ]] ||
   { echo "test_maps_cli: FAIL mismatch not flagged in --csv" >&2; fail=1; }
 
+# Checkpoints on a map: a restart continues on the same map and is refused on an edited one.
+expect 0 "" grid --map "$m" --start 188,1 --goal 12,231 --algo bfs --engine dense \
+  --checkpoint "$tmp/ck" --checkpoint-every 0.0001
+[[ -s $tmp/ck ]] || { echo "test_maps_cli: FAIL no checkpoint written" >&2; fail=1; }
+expect 0 "" grid --map "$m" --start 188,1 --goal 12,231 --algo bfs --engine dense --restart "$tmp/ck" --json
+grep -q '"restarted_from"' "$tmp/out" || { echo "test_maps_cli: FAIL restart not reported" >&2; fail=1; }
+sed '10s/\./@/' "$m" >"$tmp/edited.map"
+expect 2 "occupancy checksum" grid --map "$tmp/edited.map" --start 188,1 --goal 12,231 --algo bfs \
+  --engine dense --restart "$tmp/ck"
+
 ((fail == 0)) && echo "test_maps_cli: every case as expected"
 exit "$fail"
