@@ -104,6 +104,60 @@ grep -q "1 mismatches" "$tmp/out" || { echo "test_maps_cli: FAIL mismatch summar
 [[ $(sed -n 2p "$tmp/wrong.csv" | awk -F, '{print $NF}') == 1 ]] ||
   { echo "test_maps_cli: FAIL mismatch not flagged in --csv" >&2; fail=1; }
 
+# A voxel scenario (.3dmap + .3dscen, 26-connected without corner cutting): no public file is
+# in reach here, so this script writes one with its own Dijkstra's lengths; every engine must
+# answer each row with them.
+"$py" - "$tmp" <<'PY' || fail=1
+import heapq, itertools, math, random, sys
+t = sys.argv[1]
+random.seed(9)
+W, H, D = 12, 10, 8
+blocked = {(x, y, z) for x in range(W) for y in range(H) for z in range(D) if random.random() < 0.3}
+def free(c):
+    return all(0 <= v < n for v, n in zip(c, (W, H, D))) and c not in blocked
+moves = [m for m in itertools.product((-1, 0, 1), repeat=3) if any(m)]
+def dijkstra(s, g):
+    dist = {s: 0.0}
+    heap = [(0.0, s)]
+    while heap:
+        d, c = heapq.heappop(heap)
+        if c == g:
+            return d
+        if d > dist[c]:
+            continue
+        for m in moves:
+            axes = [i for i in range(3) if m[i]]
+            ok = all(free(tuple(c[i] + (m[i] if i in sub else 0) for i in range(3)))
+                     for k in range(1, len(axes) + 1) for sub in itertools.combinations(axes, k))
+            if not ok:
+                continue
+            n = tuple(c[i] + m[i] for i in range(3))
+            nd = d + math.sqrt(len(axes))
+            if nd < dist.get(n, math.inf):
+                dist[n] = nd
+                heapq.heappush(heap, (nd, n))
+    return None
+cells = [c for c in itertools.product(range(W), range(H), range(D)) if free(c)]
+rows = []
+while len(rows) < 12:
+    s, g = random.choice(cells), random.choice(cells)
+    d = dijkstra(s, g)
+    if d is not None:
+        rows.append((s, g, d))
+with open(f"{t}/v.3dmap", "w") as f:
+    f.write(f"voxel {W} {H} {D}\n" + "".join(f"{x} {y} {z}\n" for x, y, z in sorted(blocked)))
+with open(f"{t}/v.3dmap.3dscen", "w") as f:
+    f.write("version 1\nv.3dmap\n")
+    for s, g, d in rows:
+        f.write(f"{s[0]} {s[1]} {s[2]} {g[0]} {g[1]} {g[2]} {d:.8f} 1.0\n")
+PY
+for run in "--algo astar" "--algo dijkstra --engine dense" "--algo dijkstra --engine sparse"; do
+  # shellcheck disable=SC2086
+  expect 0 "" scen "$tmp/v.3dmap.3dscen" $run --json
+  grep -q '"rows":12,' "$tmp/out" && grep -q '"mismatches":0,' "$tmp/out" && grep -q '"connectivity":"full"' "$tmp/out" ||
+    { echo "test_maps_cli: FAIL .3dscen $run: $(cat "$tmp/out")" >&2; fail=1; }
+done
+
 # Checkpoints on a map: a restart continues on the same map and is refused on an edited one.
 expect 0 "" grid --map "$m" --start 188,1 --goal 12,231 --algo bfs --engine dense \
   --checkpoint "$tmp/ck" --checkpoint-every 0.0001
