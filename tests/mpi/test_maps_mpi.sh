@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Maps users bring, under the real Open MPI: every distributed engine on MovingAI maps and an
 # N-dimensional .npy equals the serial optimum for 1, 2, 3 and 4 ranks (sparse A* and Dijkstra
-# by hashed ownership, HDA* and bulk; the dense engine's slabs for Dijkstra and BFS), and
+# by hashed ownership, HDA* and bulk, and by slabs; the dense engine's slabs for Dijkstra and BFS), and
 # `hpcplan scen` under mpirun (rows dealt round the ranks, and every rank on each row) answers
 # every row it runs with the published optimum, its rows equal to the serial run's.
 # Usage: bash tests/mpi/test_maps_mpi.sh path/to/hpcplan MOVINGAI_DIR
@@ -36,6 +36,7 @@ cases=(
   "--map $dir/Boston_0_256.map --start 135,10 --goal 7,255 --algo dijkstra --engine sparse"
   "--map $dir/Boston_0_256.map --start 135,10 --goal 7,255 --algo dijkstra --engine sparse --mode bulk"
   "--map $dir/64room_005.map --start 15,92 --goal 470,300 --algo dijkstra --engine dense"
+  "--map $dir/64room_005.map --start 15,92 --goal 470,300 --algo astar --owner-slabs 16"
   "--map $dir/maze512-4-6.map --start 15,92 --goal 17,189 --algo bfs --engine dense"
   "--map $tmp/c4.npy --start $s4 --goal $g4 --algo astar"
   "--map $tmp/c4.npy --start $s4 --goal $g4 --algo dijkstra --engine dense"
