@@ -88,28 +88,49 @@ Action register_scen_command(CLI::App& app) {
     run.info.split = ranks > 1 ? args->split : "serial";
     Stopwatch wall;
     std::vector<ScenarioRowResult> rows;
+    // SIGTERM (SLURM's time limit), SIGUSR1 or Ctrl-C end the run between rows; the rows done
+    // are written and summarised, and the run exits 1 (it did not check every row).
+    const auto interrupted = [&control] { return control.interrupted(); };
     if (ranks > 1 && args->split == "search") {
+      // Every rank must take the same decision to stop, or one would wait in the next row's
+      // collectives: only a signal every rank received (mpirun forwards it to all) is read.
       const distributed::DistGridOptions dist;
       const mpi::Communicator& comm = *context.comm;
-      rows = run_scenario_rows(run.grid, run.connectivity, run.scenario, run.rows, a.options,
-                               [&](const GridProblem& p, const GridSearchOptions& o) {
-                                 return distributed::solve_grid_distributed(p, o, dist, comm);
-                               });
+      rows = run_scenario_rows(
+          run.grid, run.connectivity, run.scenario, run.rows, a.options,
+          [&](const GridProblem& p, const GridSearchOptions& o) {
+            return distributed::solve_grid_distributed(p, o, dist, comm);
+          },
+          {}, [&] { return comm.allreduce_max(interrupted() ? 1.0 : 0.0) > 0.0; });
     } else {
       std::vector<std::size_t> mine;
       for (std::size_t k = static_cast<std::size_t>(rank); k < run.rows.size();
            k += static_cast<std::size_t>(ranks))
         mine.push_back(run.rows[k]);
-      rows = run_scenario_rows(run.grid, run.connectivity, run.scenario, mine, a.options);
+      rows = run_scenario_rows(run.grid, run.connectivity, run.scenario, mine, a.options, {}, {},
+                               interrupted);
       if (ranks > 1) rows = gather_rows(*context.comm, rows, run.scenario);
     }
     run.info.wall_ms = wall.milliseconds();
-    if (!context.is_root()) return kExitOk;
+    if (control.interrupted()) run.info.interrupted_by = control.stopped_by();
+    if (ranks > 1) {
+      // Any rank's interruption marks the whole run.
+      const bool any = context.comm->allreduce_max(control.interrupted() ? 1.0 : 0.0) > 0.0;
+      if (any && run.info.interrupted_by.empty())
+        run.info.interrupted_by = "a signal on another rank";
+    }
+    if (!context.is_root()) return run.info.interrupted_by.empty() ? kExitOk : kExitRunFailure;
     const ScenarioSummary summary = finish_scen_run(a, run, rows);
-    const std::string out = args->json ? to_json(run.info, summary).dump() + "\n"
-                                       : to_summary(run.info, summary);
+    const std::string out =
+        args->json ? to_json(run.info, summary).dump() + "\n" : to_summary(run.info, summary);
     std::fputs(out.c_str(), stdout);
     std::fflush(stdout);
+    if (!run.info.interrupted_by.empty()) {
+      std::fprintf(stderr, "hpcplan: scen interrupted by %s after %llu of %zu rows\n",
+                   run.info.interrupted_by.c_str(), static_cast<unsigned long long>(summary.rows),
+                   run.rows.size());
+      return kExitRunFailure;
+    }
     if (summary.mismatches > 0) {
       std::fprintf(stderr,
                    "hpcplan: %llu of %llu rows differ from the published optimum (first: row "

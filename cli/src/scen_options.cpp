@@ -56,8 +56,7 @@ PreparedScen prepare_scen_run(ScenArgs& a, const RunControl& control) {
 
   PreparedScen run;
   run.scenario = env::load_scenario(a.scenario);
-  if (run.scenario.rows.empty())
-    throw InputError("scenario '" + a.scenario + "' has no problems");
+  if (run.scenario.rows.empty()) throw InputError("scenario '" + a.scenario + "' has no problems");
   run.map_path = a.map;
   if (run.map_path.empty()) {
     const std::string named =
@@ -75,6 +74,7 @@ PreparedScen prepare_scen_run(ScenArgs& a, const RunControl& control) {
   run.connectivity = a.connectivity.empty() ? m.connectivity : parse_connectivity(a.connectivity);
   run.rows = select_rows(run.scenario, selection);
   if (run.rows.empty()) throw InputError("no scenario rows in --buckets " + a.buckets);
+  check_scenario_rows(*run.grid, run.scenario, run.rows);
   GridProblem probe = occupancy_problem(run.grid, run.connectivity);
   validate(probe, o);
 

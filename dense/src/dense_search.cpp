@@ -37,10 +37,8 @@ int in_tile_axes(const ObstacleSource& field, const Query& q) {
   // enough to need them does not fit any budget anyway.
   if (dims > 3) return 2;
   const TileLayout square(dims, field.extent(), 2);
-  return FreeWindows::table_bytes(field, square, max_word_steps(q, dims)) <=
-                 kMaxSquareTable
-             ? 2
-             : 1;
+  return FreeWindows::table_bytes(field, square, max_word_steps(q, dims)) <= kMaxSquareTable ? 2
+                                                                                             : 1;
 }
 
 }  // namespace
@@ -56,14 +54,13 @@ std::uint64_t planned_bytes(const ObstacleSource& field, const Query& q, int ran
     tiles = std::max(tiles, detail::plan_slabs(field, layout, r, std::max(1, ranks),
                                                std::max(1, q.threads), q.block_layers)
                                 .store_tiles);
-  std::uint64_t bytes =
-      FreeWindows::table_bytes(field, layout, max_word_steps(q, dims));
+  std::uint64_t bytes = FreeWindows::table_bytes(field, layout, max_word_steps(q, dims));
   if (bytes == std::numeric_limits<std::uint64_t>::max()) return bytes;
   if (q.algorithm == Algorithm::bfs) {
     bytes += detail::LevelBfs<2, 2, detail::SeedKernel<2, 2>>::store_bytes(tiles);
   } else {
-    bytes += detail::CostClassDijkstra<2, 2, detail::SeedKernel<2, 2>>::store_bytes(tiles,
-                                                                                   q.keep_path);
+    bytes +=
+        detail::CostClassDijkstra<2, 2, detail::SeedKernel<2, 2>>::store_bytes(tiles, q.keep_path);
   }
   // A distance field's part: a 4-byte value per state of the rank's slab.
   if (q.distances) bytes += tiles * 64 * 4;
@@ -112,8 +109,12 @@ Result search(const ObstacleSource& field, const Query& asked, SlabTransport& tr
     throw std::logic_error("dense::search: full connectivity is limited to d <= 4");
   const std::uint64_t needed = planned_bytes(field, q, tr.ranks());
   if (needed == std::numeric_limits<std::uint64_t>::max())
-    throw InputError("the lattice is too large for the dense engine (over 2^50 tiles of 64 " +
-                     std::string("states); use --engine sparse"));
+    throw InputError(field.is_occupancy()
+                         ? std::string("the array's bounding hypercube is too large for the dense "
+                                       "engine's window table (over 2^31 / 9 padded tiles); use "
+                                       "--engine sparse")
+                         : std::string("the lattice is too large for the dense engine (over 2^50 "
+                                       "tiles of 64 states); use --engine sparse"));
   if (q.memory_budget > 0 && needed > q.memory_budget)
     throw InputError("the dense engine needs " + format_bytes(needed) + " per rank (" +
                      std::to_string(needed) + " bytes) for this lattice, over the budget of " +
@@ -121,8 +122,8 @@ Result search(const ObstacleSource& field, const Query& asked, SlabTransport& tr
                      " bytes); raise --memory-budget, use more ranks, or --engine sparse");
   const int k = in_tile_axes(field, q);
   switch (field.dims()) {
-#define HPCPLAN_DENSE_DIMS(d)                                              \
-  case d:                                                                  \
+#define HPCPLAN_DENSE_DIMS(d)                                                      \
+  case d:                                                                          \
     if constexpr (d <= kCompiledDims) return detail::run_dims<d>(field, q, tr, k); \
     break;
     HPCPLAN_DENSE_DIMS(1)

@@ -10,7 +10,8 @@ std::string scenario_csv(const std::vector<ScenarioRowResult>& rows, int dims) {
   std::string out = "row,bucket";
   for (const char* end : {"start", "goal"})
     for (int a = 0; a < dims; ++a)
-      out.append(",").append(end).append("_").append(a < 3 ? std::string(kAxes[a]) : std::to_string(a));
+      out.append(",").append(end).append("_").append(a < 3 ? std::string(kAxes[a])
+                                                           : std::to_string(a));
   out += ",optimal,cost,status,expanded,hops,time_us,mismatch\n";
   char line[128];
   for (const ScenarioRowResult& r : rows) {
@@ -41,6 +42,7 @@ nlohmann::json to_json(const ScenarioRunInfo& info, const ScenarioSummary& s) {
   j["ranks"] = info.ranks;
   j["split"] = info.split;
   j["file_rows"] = info.file_rows;
+  if (!info.interrupted_by.empty()) j["interrupted_by"] = info.interrupted_by;
   j["rows"] = s.rows;
   j["solved"] = s.solved;
   j["mismatches"] = s.mismatches;
@@ -75,11 +77,10 @@ std::string to_summary(const ScenarioRunInfo& info, const ScenarioSummary& s) {
   o << ", " << info.engine << " engine, " << info.ranks << " rank(s)";
   if (info.ranks > 1) o << " (" << info.split << ")";
   o << "\n";
-  std::snprintf(line, sizeof line, "  rows       %llu of %llu, %llu solved, %llu mismatches\n",
-                static_cast<unsigned long long>(s.rows),
-                static_cast<unsigned long long>(info.file_rows),
-                static_cast<unsigned long long>(s.solved),
-                static_cast<unsigned long long>(s.mismatches));
+  std::snprintf(
+      line, sizeof line, "  rows       %llu of %llu, %llu solved, %llu mismatches\n",
+      static_cast<unsigned long long>(s.rows), static_cast<unsigned long long>(info.file_rows),
+      static_cast<unsigned long long>(s.solved), static_cast<unsigned long long>(s.mismatches));
   o << line;
   if (!s.mismatch_rows.empty()) {
     o << "  mismatch   rows";

@@ -87,8 +87,9 @@ int dense_threads(const ObstacleSource& field, const GridSearchOptions& o,
 
 namespace {
 
-dense::Query dense_query(const ObstacleSource& field, const GridProblem& problem, const GridSearchOptions& o,
-                         const GridReport& report, int ranks_sharing_memory) {
+dense::Query dense_query(const ObstacleSource& field, const GridProblem& problem,
+                         const GridSearchOptions& o, const GridReport& report,
+                         int ranks_sharing_memory) {
   dense::Query q;
   q.start = report.problem.start;
   q.goal = report.problem.goal;
@@ -121,8 +122,11 @@ double validated_dense_path(const ObstacleSource& field, const GridProblem& prob
 
 }  // namespace
 
-bool dense_fits(const ObstacleSource& field, const GridSearchOptions& options, const GridReport& report,
-                int ranks) {
+namespace {
+
+// The bytes a dense run of these options would plan for, per rank.
+std::uint64_t planned_dense_bytes(const ObstacleSource& field, const GridSearchOptions& options,
+                                  const GridReport& report, int ranks) {
   dense::Query q;
   q.algorithm =
       options.algorithm == GridAlgorithm::bfs ? dense::Algorithm::bfs : dense::Algorithm::dijkstra;
@@ -132,7 +136,14 @@ bool dense_fits(const ObstacleSource& field, const GridSearchOptions& options, c
   q.block_layers = options.contiguous_slabs  ? 0
                    : options.slab_layers > 0 ? options.slab_layers
                                              : -1;
-  return dense::planned_bytes(field, q, ranks) <= dense_memory_budget(options, report);
+  return dense::planned_bytes(field, q, ranks);
+}
+
+}  // namespace
+
+bool dense_fits(const ObstacleSource& field, const GridSearchOptions& options,
+                const GridReport& report, int ranks) {
+  return planned_dense_bytes(field, options, report, ranks) <= dense_memory_budget(options, report);
 }
 
 bool uses_dense_engine(const ObstacleSource& field, const GridSearchOptions& options,
@@ -141,11 +152,20 @@ bool uses_dense_engine(const ObstacleSource& field, const GridSearchOptions& opt
   if (options.algorithm != GridAlgorithm::bfs && options.algorithm != GridAlgorithm::dijkstra)
     return false;
   if (options.engine == GridEngine::dense) return true;  // refused in one line if not compiled
-  return field.dims() <= dense::compiled_dims() && dense_fits(field, options, report, ranks);
+  if (field.dims() > dense::compiled_dims()) return false;
+  // The dense engine works on the array's bounding hypercube in 8 x 8 tiles padded by one on
+  // every axis: for an elongated array (a 1 x 65535 line: 5.9 GB) or many short axes (3^11
+  // cells: 1.4 GB) that is far more than the array. Auto takes it only while it plans at most
+  // 8 bytes per cell of the array (a 512 x 512 map plans about 2 bytes per cell).
+  if (field.is_occupancy() && planned_dense_bytes(field, options, report, ranks) >
+                                  8 * field.occupancy().cells() + (std::uint64_t{1} << 20))
+    return false;
+  return dense_fits(field, options, report, ranks);
 }
 
-void run_dense(const ObstacleSource& field, const GridProblem& problem, const GridSearchOptions& options,
-               dense::SlabTransport& transport, int ranks_sharing_memory, GridReport& report) {
+void run_dense(const ObstacleSource& field, const GridProblem& problem,
+               const GridSearchOptions& options, dense::SlabTransport& transport,
+               int ranks_sharing_memory, GridReport& report) {
   dense::Query q = dense_query(field, problem, options, report, ranks_sharing_memory);
   if (transport.rank() != 0) q.progress_label.clear();  // one progress line per job
   if (!options.checkpoint.empty())

@@ -53,6 +53,39 @@ std::vector<std::size_t> select_rows(const env::Scenario& scenario, const Scenar
   return rows;
 }
 
+void check_scenario_rows(const OccupancyGrid& grid, const env::Scenario& scenario,
+                         const std::vector<std::size_t>& rows) {
+  auto size_text = [](const std::vector<int>& sides) {
+    std::string t;
+    for (std::size_t a = 0; a < sides.size(); ++a)
+      t.append(a ? " x " : "").append(std::to_string(sides[a]));
+    return t;
+  };
+  const std::string& first_map = scenario.rows.empty() ? std::string() : scenario.rows[0].map;
+  for (std::size_t i : rows) {
+    const env::ScenarioRow& row = scenario.rows.at(i);
+    const std::string where = "scenario row " + std::to_string(i) + ": ";
+    if (!scenario.voxel && row.map != first_map)
+      throw InputError(where + "names the map '" + row.map + "', not '" + first_map +
+                       "' as the file's first row does; run each map's rows on their own");
+    if (!row.map_size.empty() && row.map_size != grid.shape())
+      throw InputError(where + "is for a " + size_text(row.map_size) + " map; the map '" +
+                       grid.name + "' is " + size_text(grid.shape()));
+    for (const auto* end : {&row.start, &row.goal}) {
+      const char* what = end == &row.start ? "start" : "goal";
+      if (end->size() != static_cast<std::size_t>(grid.dims()))
+        throw InputError(where + "has " + std::to_string(end->size()) + " coordinates; the map '" +
+                         grid.name + "' has " + std::to_string(grid.dims()) + " dimensions");
+      if (!grid.inside(*end))
+        throw InputError(where + "its " + what + " is outside the map '" + grid.name + "' (" +
+                         size_text(grid.shape()) + ")");
+      if (!grid.is_free(*end))
+        throw InputError(where + "its " + what + " is blocked on the map '" + grid.name +
+                         "': is this the map the scenario was made for?");
+    }
+  }
+}
+
 bool is_mismatch(const ScenarioRowResult& r, GridAlgorithm algorithm, double weight) {
   if (r.status != Status::solved) return true;
   const double tol = kScenarioTolerance * std::max(1.0, r.optimal);
@@ -71,27 +104,9 @@ bool is_mismatch(const ScenarioRowResult& r, GridAlgorithm algorithm, double wei
 std::vector<ScenarioRowResult> run_scenario_rows(
     std::shared_ptr<const OccupancyGrid> grid, Connectivity connectivity,
     const env::Scenario& scenario, const std::vector<std::size_t>& rows, GridSearchOptions options,
-    const ScenarioSolver& solve, const std::function<void(const ScenarioRowResult&)>& each) {
-  // Every row is checked against the map before any runs: a scenario for another map is bad
-  // input, not a thousand mismatches.
-  for (std::size_t i : rows) {
-    const env::ScenarioRow& row = scenario.rows.at(i);
-    if (!row.map_size.empty()) {
-      bool same = row.map_size.size() == static_cast<std::size_t>(grid->dims());
-      for (std::size_t a = 0; same && a < row.map_size.size(); ++a)
-        same = row.map_size[a] == grid->size(static_cast<int>(a));
-      if (!same)
-        throw InputError("scenario row " + std::to_string(i) + " is for a " +
-                         std::to_string(row.map_size[0]) + " x " +
-                         std::to_string(row.map_size.size() > 1 ? row.map_size[1] : 1) +
-                         " map; the map '" + grid->name + "' is " + std::to_string(grid->size(0)) +
-                         " x " + std::to_string(grid->dims() > 1 ? grid->size(1) : 1));
-    }
-    if (row.start.size() != static_cast<std::size_t>(grid->dims()))
-      throw InputError("scenario row " + std::to_string(i) + " has " +
-                       std::to_string(row.start.size()) + " coordinates; the map has " +
-                       std::to_string(grid->dims()) + " dimensions");
-  }
+    const ScenarioSolver& solve, const std::function<void(const ScenarioRowResult&)>& each,
+    const std::function<bool()>& stop_between_rows) {
+  check_scenario_rows(*grid, scenario, rows);
   // The budget once for the run (reading the kernel's memory figure per query would cost more
   // than many of the searches).
   if (options.max_states == 0) {
@@ -130,7 +145,7 @@ std::vector<ScenarioRowResult> run_scenario_rows(
     r.mismatch = is_mismatch(r, options.algorithm, weight);
     if (each) each(r);
     out.push_back(std::move(r));
-    if (options.cancel.stop_requested()) break;
+    if (options.cancel.stop_requested() || (stop_between_rows && stop_between_rows())) break;
   }
   return out;
 }

@@ -158,6 +158,21 @@ for run in "--algo astar" "--algo dijkstra --engine dense" "--algo dijkstra --en
     { echo "test_maps_cli: FAIL .3dscen $run: $(cat "$tmp/out")" >&2; fail=1; }
 done
 
+# Auto takes the sparse engine where the dense one's hypercube of padded tiles would dwarf the
+# array (a 1 x 65535 line planned 5.9 GB dense), the dense one on a 2D map.
+"$py" -c "import numpy as np; np.save('$tmp/line.npy', np.zeros((1, 65535), np.uint8))"
+expect 0 "" grid --map "$tmp/line.npy" --algo bfs --start 0,0 --goal 65534,0 --json
+grep -q '"engine":"sparse"' "$tmp/out" && grep -q '"hops":65534' "$tmp/out" ||
+  { echo "test_maps_cli: FAIL the line array: $(head -c 300 "$tmp/out")" >&2; fail=1; }
+expect 0 "" grid --map "$m" --start 188,1 --goal 12,231 --algo dijkstra --json
+grep -q '"engine":"dense"' "$tmp/out" || { echo "test_maps_cli: FAIL Boston not dense" >&2; fail=1; }
+# Every row is checked before any runs: a row of another map, a blocked end.
+{ head -2 "$s"; sed -n 3p "$s" | awk -F'\t' 'BEGIN{OFS="\t"} {$2="Other.map"; print}'; } >"$tmp/two.map.scen"
+cp "$m" "$tmp/two.map"
+expect 2 "names the map 'Other.map'" scen "$tmp/two.map.scen" --map "$m"
+{ head -2 "$s"; sed -n 3p "$s" | awk -F'\t' 'BEGIN{OFS="\t"} {$5="21"; $6="0"; print}'; } >"$tmp/blocked.map.scen"
+expect 2 "scenario row 1: its start is blocked" scen "$tmp/blocked.map.scen" --map "$m"
+
 # Checkpoints on a map: a restart continues on the same map and is refused on an edited one.
 expect 0 "" grid --map "$m" --start 188,1 --goal 12,231 --algo bfs --engine dense \
   --checkpoint "$tmp/ck" --checkpoint-every 0.0001

@@ -103,8 +103,8 @@ class LatticeGraph {
   }
 
   // Independent re-validation for returned paths: recomputes everything from the GOG formula
-  // or the occupancy grid's cell test (not the level tables, incremental sums or bit strides). Returns the move's length, or -1 if a->b
-  // is not a legal move between free states.
+  // or the occupancy grid's cell test (not the level tables, incremental sums or bit strides).
+  // Returns the move's length, or -1 if a->b is not a legal move between free states.
   double checked_edge_length(const State& a, const State& b) const {
     int ca[kMaxDims], cb[kMaxDims];
     layout_.unpack(a, ca);
@@ -202,78 +202,75 @@ class LatticeGraph {
     return sum;
   }
 
-  // The seed rule on GOG: incremental level sums (the occupancy grid's version follows).
+  // The seed rule on either source. The one-axis neighbours are evaluated first (GOG: level
+  // sums, incrementally; occupancy: one bit each at the expanded state's bit index plus the
+  // axis's stride), then every move is emitted by one loop, so the code that stores a
+  // successor (inlined from the search) exists once per instantiation, not once per source.
   template <class Emit>
   void expand_seed_rule(const State& x, Emit& emit) const {
-    if (grid_) return expand_seed_rule_bits(x, emit);
     int c[kMaxDims];
-    const int sum = unpack_with_level_sum(x, c);
-    // change[a][s]: level-sum change of stepping axis a by s (s=0: -1, s=1: +1); free1 marks
-    // one-axis neighbours that are in the box and free.
-    int change[kMaxDims][2];
+    layout_.unpack(x, c);
+    // base: the expanded state's level sum or bit index; change[a][s]: what a step along axis
+    // a (s = 0: -1, 1: +1) adds to it; free1: that one-axis neighbour is in the box and free.
+    std::int64_t base, change[kMaxDims][2];
     bool free1[kMaxDims][2];
-    std::uint64_t checks = 0;
+    std::uint64_t checks = grid_ ? seed_singles_bits(c, base, change, free1)
+                                 : seed_singles_gog(c, base, change, free1);
     Move id = 0;
     constexpr LatticeCost kOne = LatticeCost::for_axes(1), kTwo = LatticeCost::for_axes(2);
-    for (int a = 0; a < dims_; ++a) {
-      const int here = tables_[a][c[a]];
-      for (int s = 0; s < 2; ++s, ++id) {
-        const int nc = c[a] + (s ? 1 : -1);
-        if (nc < 0 || nc >= extent_) {
-          free1[a][s] = false;
-          continue;
-        }
-        ++checks;
-        change[a][s] = tables_[a][nc] - here;
-        free1[a][s] = sum + change[a][s] < threshold_;
+    for (int a = 0; a < dims_; ++a)
+      for (int s = 0; s < 2; ++s, ++id)
         if (free1[a][s]) emit(step(x, id), kOne, id);
-      }
-    }
     for (int i = 0; i < dims_; ++i)
       for (int k = i + 1; k < dims_; ++k)
         for (int si = 0; si < 2; ++si)
           for (int sk = 0; sk < 2; ++sk, ++id) {
             if (!free1[i][si] || !free1[k][sk]) continue;
             ++checks;
-            if (sum + change[i][si] + change[k][sk] < threshold_) emit(step(x, id), kTwo, id);
+            if (free_at(base + change[i][si] + change[k][sk])) emit(step(x, id), kTwo, id);
           }
     checks_ += checks;
   }
 
-  // The seed rule on an occupancy grid: the same moves, in the same order, each target one bit.
-  template <class Emit>
-  void expand_seed_rule_bits(const State& x, Emit& emit) const {
-    int c[kMaxDims];
-    layout_.unpack(x, c);
-    const std::int64_t here = static_cast<std::int64_t>(grid_->index(c));
-    std::int64_t change[kMaxDims][2];
-    bool free1[kMaxDims][2];
+  // Whether the state at a level sum (GOG) or bit index (occupancy) is free.
+  [[gnu::always_inline]] bool free_at(std::int64_t v) const {
+    return grid_ ? grid_->free_at(static_cast<std::uint64_t>(v)) : v < threshold_;
+  }
+  std::uint64_t seed_singles_gog(const int* c, std::int64_t& base,
+                                 std::int64_t (&change)[kMaxDims][2],
+                                 bool (&free1)[kMaxDims][2]) const {
+    int sum = 0;
+    for (int a = 0; a < dims_; ++a) sum += tables_[a][c[a]];
+    base = sum;
     std::uint64_t checks = 0;
-    Move id = 0;
-    constexpr LatticeCost kOne = LatticeCost::for_axes(1), kTwo = LatticeCost::for_axes(2);
     for (int a = 0; a < dims_; ++a) {
-      for (int s = 0; s < 2; ++s, ++id) {
+      const int here = tables_[a][c[a]];
+      for (int s = 0; s < 2; ++s) {
         const int nc = c[a] + (s ? 1 : -1);
-        if (nc < 0 || nc >= size_[a]) {
-          free1[a][s] = false;
-          continue;
-        }
+        free1[a][s] = false;
+        if (nc < 0 || nc >= extent_) continue;
         ++checks;
-        change[a][s] = s ? bit_stride_[a] : -bit_stride_[a];
-        free1[a][s] = grid_->free_at(static_cast<std::uint64_t>(here + change[a][s]));
-        if (free1[a][s]) emit(step(x, id), kOne, id);
+        change[a][s] = tables_[a][nc] - here;
+        free1[a][s] = sum + change[a][s] < threshold_;
       }
     }
-    for (int i = 0; i < dims_; ++i)
-      for (int k = i + 1; k < dims_; ++k)
-        for (int si = 0; si < 2; ++si)
-          for (int sk = 0; sk < 2; ++sk, ++id) {
-            if (!free1[i][si] || !free1[k][sk]) continue;
-            ++checks;
-            if (grid_->free_at(static_cast<std::uint64_t>(here + change[i][si] + change[k][sk])))
-              emit(step(x, id), kTwo, id);
-          }
-    checks_ += checks;
+    return checks;
+  }
+  std::uint64_t seed_singles_bits(const int* c, std::int64_t& base,
+                                  std::int64_t (&change)[kMaxDims][2],
+                                  bool (&free1)[kMaxDims][2]) const {
+    base = static_cast<std::int64_t>(grid_->index(c));
+    std::uint64_t checks = 0;
+    for (int a = 0; a < dims_; ++a)
+      for (int s = 0; s < 2; ++s) {
+        const int nc = c[a] + (s ? 1 : -1);
+        free1[a][s] = false;
+        if (nc < 0 || nc >= size_[a]) continue;
+        ++checks;
+        change[a][s] = s ? bit_stride_[a] : -bit_stride_[a];
+        free1[a][s] = grid_->free_at(static_cast<std::uint64_t>(base + change[a][s]));
+      }
+    return checks;
   }
 
   template <class Emit>

@@ -20,6 +20,7 @@ struct ScenarioRunInfo {
   double load_ms = 0.0;        // reading the map and the scenario
   double wall_ms = 0.0;        // the rows, start to end
   std::uint64_t file_rows = 0;
+  std::string interrupted_by;  // the signal that ended the run between rows ("" if none)
 };
 
 // One line per row: row, bucket, start_x, start_y[, start_z], goal_x, ..., optimal, cost,

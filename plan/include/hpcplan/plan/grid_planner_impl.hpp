@@ -72,10 +72,20 @@ void search_into_report(const Graph& graph, const GridProblem& problem, const Gr
     progress.update(expanded, stored);
   };
 
-  const auto r =
-      with_heuristic<W>(o, problem, graph.layout(), report.problem.goal, [&](const auto& h) {
-        return search::best_first_search<MapPolicy>(graph, start, goal, h, eo);
-      });
+  auto search = [&](const auto& h) {
+    return search::best_first_search<MapPolicy>(graph, start, goal, h, eo);
+  };
+  // The jump points serve plain A* in 2D only, where both connectivities are the same 8 moves:
+  // two heuristics, not four (each one a whole instantiation of the search to compile).
+  const auto r = [&] {
+    if constexpr (requires { graph.unit_steps(std::vector<typename Graph::State>{}); }) {
+      if (o.heuristic == HeuristicKind::euclidean)
+        return search(EuclideanHeuristic<W>(graph.layout(), report.problem.goal));
+      return search(SeedRuleHeuristic<W>(graph.layout(), report.problem.goal));
+    } else {
+      return with_heuristic<W>(o, problem, graph.layout(), report.problem.goal, search);
+    }
+  }();
   GridResult& out = report.result;
   out.status = r.status;
   out.cost = r.cost;
@@ -119,8 +129,8 @@ void run_search(const ObstacleSource& field, const GridProblem& problem, const G
 }  // namespace detail
 
 // The planner with a chosen visited map on a field already built (problem.gog must be the
-// field's parameters, or problem.occupancy the grid). The dense policy serves one-word keys only; wider ones fall back to the
-// default hash map.
+// field's parameters, or problem.occupancy the grid). The dense policy serves one-word keys only;
+// wider ones fall back to the default hash map.
 template <class MapPolicy>
 GridReport solve_grid_with(const ObstacleSource& field, const GridProblem& problem,
                            const GridSearchOptions& options, double setup_ms = 0.0) {

@@ -51,6 +51,13 @@ struct ScenarioRowResult {
   std::vector<std::vector<int>> path;  // with GridSearchOptions::keep_path
 };
 
+// InputError (one line, naming the row) unless every row of `rows` fits the grid: the map size it
+// names, its coordinates' count and range, free ends, the same map name as the file's first
+// row. Every rank calls it on all the rows before any is dealt out, so a bad row ends every
+// rank the same way instead of one rank leaving the others in a collective.
+void check_scenario_rows(const OccupancyGrid& grid, const env::Scenario& scenario,
+                         const std::vector<std::size_t>& rows);
+
 // Checks a row's answer against its published optimum (the rule above).
 bool is_mismatch(const ScenarioRowResult& r, GridAlgorithm algorithm, double weight);
 
@@ -58,13 +65,15 @@ bool is_mismatch(const ScenarioRowResult& r, GridAlgorithm algorithm, double wei
 // on the grid with the row's start and goal, solved with `options` (the state budget derived
 // once for the whole run when it is 0). `solve` runs one problem (default: solve_grid on the
 // grid; the command line passes the distributed planner under mpirun). `each` sees every row
-// as it finishes (progress, early exit by cancelling options.cancel's source).
+// as it finishes (progress, early exit by cancelling options.cancel's source);
+// `stop_between_rows` ends the run before the next row when true (a signal's interruption).
 using ScenarioSolver = std::function<GridReport(const GridProblem&, const GridSearchOptions&)>;
 std::vector<ScenarioRowResult> run_scenario_rows(
     std::shared_ptr<const OccupancyGrid> grid, Connectivity connectivity,
-    const env::Scenario& scenario, const std::vector<std::size_t>& rows,
-    GridSearchOptions options, const ScenarioSolver& solve = {},
-    const std::function<void(const ScenarioRowResult&)>& each = {});
+    const env::Scenario& scenario, const std::vector<std::size_t>& rows, GridSearchOptions options,
+    const ScenarioSolver& solve = {},
+    const std::function<void(const ScenarioRowResult&)>& each = {},
+    const std::function<bool()>& stop_between_rows = {});
 
 // Times per bucket and the run's totals, from the rows (in any order).
 struct BucketTimes {
