@@ -104,11 +104,14 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktra
 # 2-core VM, the longest test of the stage, against 68 s for the invariants test that drives
 # every scenario's step). The MPI suite runs on 1, 2, 3 and 4 ranks here; on 8 (oversubscribed
 # four times over on the CI's 2 cores) it took 150 s under ASan, the stage's longest test, and
-# it runs on 8 in the Release stage. The Python package's grid, world, fluid and API tests run
-# here too (python_api_asan, tests/python/CMakeLists.txt: the sanitizer's runtime preloaded
-# into Debian's interpreter).
+# it runs on 8 in the Release stage. The MPI maps test (mpi_maps: 25 mpirun launches of the CLI
+# on MovingAI maps and an array) runs in the Release stage only: the occupancy code it drives
+# (expansions, dense windows, scenario rows) runs under ASan in the unit tests, and the
+# distributed engines in the MPI suite on 1-4 ranks. The Python package's grid, world, fluid
+# and API tests run here too (python_api_asan, tests/python/CMakeLists.txt: the sanitizer's
+# runtime preloaded into Debian's interpreter).
 (cd build-asan && ctest_run --timeout 900 -L "unit|cli|ompl|mpi|sph|sim|python" \
-  -E '^(Cli\.EveryNumericOptionRefusesBadValues|WaterValidation\..*|Simulator\.DamBreakCrossing|Invariants\.ThreadCountDoesNotChangeTheResult|mpi_distributed_np8)$')
+  -E '^(Cli\.EveryNumericOptionRefusesBadValues|WaterValidation\..*|Simulator\.DamBreakCrossing|Invariants\.ThreadCountDoesNotChangeTheResult|mpi_distributed_np8|mpi_maps)$')
 
 stage "build (libFuzzer: the parsers' fuzz targets)"
 # Clang's libFuzzer in a tree of its own, holding only the fuzz targets: each compiles its
