@@ -423,8 +423,8 @@ def test_a_stop_source_ends_a_scenario_run(tmp_path):
     seen = []
 
     def request(running):
-        # Once a few rows are done (the run is seen in the engine first).
-        time.sleep(0.2)
+        # Once the run is seen in the engine (a handshake, not a wait for rows to finish: how
+        # many are done by then depends on the machine, so the test does not count on any).
         seen.append(running)
         stop.request_stop()
 
@@ -433,7 +433,7 @@ def test_a_stop_source_ends_a_scenario_run(tmp_path):
     r = hpcplan.scen.run(path, map=map_path, algo="dijkstra", engine="sparse", stop=stop)
     t.join()
     assert seen == [True] and r.status == "cancelled" and not r.ok
-    assert 0 < len(r.rows) < 20000 and r.mismatches == 0, (len(r.rows), r.mismatch_rows)
+    assert len(r.rows) < 20000 and r.mismatches == 0, (len(r.rows), r.mismatch_rows)
     assert all(x["status"] == "solved" for x in r.rows)  # the row under way is dropped
     assert r.report["rows"] == len(r.rows)
     assert time.perf_counter() - started < 60  # a guard: 20,000 rows would take minutes
