@@ -83,6 +83,10 @@ void CSpaceStateSpace::enforceBounds(ob::State* state) const {
   for (std::size_t k = 0; k < dimension_; ++k) {
     const auto& ax = axes[k];
     if (ax.periodic) {
+      // A value already in range stays as it is, bit for bit: the round trip through fmod
+      // would move it by an ulp, and OMPL's sanity check rejects a bound that moves states
+      // inside it.
+      if (x[k] >= ax.lower && x[k] < ax.upper) continue;
       const double period = ax.upper - ax.lower;
       x[k] = ax.lower + std::fmod(std::fmod(x[k] - ax.lower, period) + period, period);
       if (x[k] >= ax.upper) x[k] = ax.lower;  // fmod's round-off can land on the period
