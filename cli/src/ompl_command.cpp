@@ -1,5 +1,6 @@
-// `hpcplan ompl`: the grid planner against OMPL's sampling planners on one GOG problem, with an
-// OMPL benchmark log, a per-run CSV and a summary table of medians.
+// `hpcplan ompl`: the grid planner against OMPL's sampling planners on one problem (the GOG
+// field, or OMPL's own kinematic-chain and hypercube benchmarks as configuration spaces), with
+// an OMPL benchmark log, a per-run CSV and a summary table of medians.
 #include <algorithm>
 #include <cstdio>
 #include <memory>
@@ -42,8 +43,16 @@ std::string cell(double v, const char* format) {
 }
 
 void print_summary(const plan::OmplBenchOptions& o, const plan::OmplBenchResult& r) {
-  std::printf("hpcplan ompl: %dD, extent %d, %d run(s) of %.3g s per planner, seed %llu\n", o.dims,
-              o.extent, o.runs, o.time_s, static_cast<unsigned long long>(o.seed));
+  if (plan::is_cspace_world(o.world))
+    std::printf(
+        "hpcplan ompl: world %s, %s %d, %d cells per axis, %d run(s) of %.3g s per planner, "
+        "seed %llu\n",
+        o.world.c_str(), o.world == "chain" ? "links" : "dims", o.dims, r.cells, o.runs, o.time_s,
+        static_cast<unsigned long long>(o.seed));
+  else
+    std::printf(
+        "hpcplan ompl: world gog, %dD, extent %d, %d run(s) of %.3g s per planner, seed %llu\n",
+        o.dims, o.extent, o.runs, o.time_s, static_cast<unsigned long long>(o.seed));
   std::printf("  straight line %.4f; reference quality (best final of any run) %s\n",
               r.straight_line, cell(r.reference_quality, "%.4f").c_str());
   std::printf("  %-16s %7s %12s %9s %12s %9s %9s %14s %6s %9s\n", "planner", "success",
@@ -81,14 +90,44 @@ void print_summary(const plan::OmplBenchOptions& o, const plan::OmplBenchResult&
 
 }  // namespace
 
+std::string join_names(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+// The options that describe the GOG field, refused with a configuration-space world rather
+// than silently ignored.
+const char* const kGogOnly[] = {"--extent", "--density", "--motion", "--resolution"};
+
 Action register_ompl_command(CLI::App& app) {
   auto args = std::make_shared<OmplArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "ompl", "Grid A* vs OMPL sampling planners on the GOG field (OMPL benchmark log + CSV)");
+      "ompl",
+      "Grid A* vs OMPL sampling planners on the GOG field or OMPL's chain and hypercube "
+      "benchmarks (OMPL benchmark log + CSV)");
   auto& o = args->options;
-  add_number(cmd, "--dims", o.dims, "Dimensions, 2..10", 2, 10)->required();
-  cmd->add_option("--planners", o.planners,
-                  "Comma-separated (hpcplan planners --world ompl): " + planner_names("ompl"))
+  cmd->add_option("--world", o.world,
+                  "gog (seed 002's field) | chain (OMPL's kinematic chain, --dims links) | "
+                  "hypercube (OMPL's hypercube corridor)")
+      ->capture_default_str();
+  // The range depends on the world: validate() says which.
+  add_number(cmd, "--dims", o.dims, "Dimensions (chain: links): gog 2..10, chain/hypercube 2..16",
+             2, 16)
+      ->required();
+  add_number(cmd, "--cells", o.cells,
+             "chain/hypercube: the grid planner's cells per axis (0: the benchmark's default)", 0,
+             65535)
+      ->capture_default_str();
+  add_number(cmd, "--resolution-fraction", o.resolution_fraction,
+             "chain/hypercube: motion-check step as a fraction of the bounds' diagonal (0: the "
+             "benchmark's: chain 0.01, hypercube 0.001)",
+             0, 1)
+      ->capture_default_str();
+  cmd->add_option(
+         "--planners", o.planners,
+         "Comma-separated (hpcplan planners --world ompl): " + planner_names("ompl") +
+             "; with --world chain|hypercube also: " + join_names(plan::cspace_only_planners()))
       ->delimiter(',')
       ->capture_default_str();
   add_number(cmd, "--time", o.time_s, "Seconds per run", 1e-6, 3600)->capture_default_str();
@@ -113,13 +152,18 @@ Action register_ompl_command(CLI::App& app) {
   cmd->add_option("--log", args->log, "OMPL benchmark log (for ompl_benchmark_statistics)");
   cmd->add_option("--csv", args->csv, "One row per planner run");
   cmd->add_flag("--verbose", args->verbose, "Keep OMPL's informational messages");
-  return [args](const Context& context) {
+  return [args, cmd](const Context& context) {
     if (context.comm != nullptr && context.comm->size() > 1)
       throw InputError(
           "hpcplan ompl runs in one process; the distributed grid planner is "
           "`mpirun -np P hpcplan grid`");
     if (!args->verbose) ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
     args->options.shortcut = !args->no_shortcut;
+    if (plan::is_cspace_world(args->options.world))
+      for (const char* gog_only : kGogOnly)
+        if (cmd->count(gog_only) > 0)
+          throw InputError(std::string(gog_only) + " describes the GOG field; --world " +
+                           args->options.world + " takes --cells and --resolution-fraction");
     plan::validate(args->options);
     if (!args->log.empty()) require_writable_destination(args->log, "--log");
     if (!args->csv.empty()) require_writable_destination(args->csv, "--csv");

@@ -5,13 +5,18 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
+#include <ompl/geometric/planners/est/EST.h>
 #include <ompl/geometric/planners/fmt/FMT.h>
+#include <ompl/geometric/planners/kpiece/KPIECE1.h>
+#include <ompl/geometric/planners/prm/PRM.h>
+#include <ompl/geometric/planners/stride/STRIDE.h>
 #include <ompl/tools/benchmark/Benchmark.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
@@ -19,10 +24,15 @@
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/progress.hpp"
 #include "hpcplan/core/stopwatch.hpp"
+#include "hpcplan/env/benchmark_spaces.hpp"
 #include "hpcplan/env/gog_world.hpp"
+#include "hpcplan/env/hypercube.hpp"
+#include "hpcplan/graph/cspace_graph.hpp"
+#include "hpcplan/plan/cspace_grid_planner.hpp"
 #include "hpcplan/plan/grid_astar_planner.hpp"
 #include "hpcplan/plan/grid_problem.hpp"
 #include "hpcplan/plan/planner_registry.hpp"
+#include "hpcplan/sampling/cspace_ompl.hpp"
 #include "hpcplan/sampling/gog_space.hpp"
 #include "hpcplan/sampling/ompl_planners.hpp"
 
@@ -36,15 +46,57 @@ using namespace sampling;
 
 namespace {
 
-// User-facing name -> how to build it: the grid planner in two forms, then every planner of
-// sampling's one OMPL table. The OMPL names must be unique within one log.
-struct PlannerKind {
-  std::string ompl_name;
-  std::function<ob::PlannerPtr(const GogSpace&, const OmplBenchOptions&)> make;
+// What one invocation plans on: the GOG field or a configuration space, with what the
+// harness needs of either (the space information every planner shares, the check counter,
+// the independent path re-check, the query).
+struct BenchWorld {
+  std::optional<GogSpace> gog;
+  std::optional<CSpaceOmpl> cspace;
+  int cells = 0;       // c-space: the lattice's cells per axis
+  double range = 0.0;  // > 0: every planner's "range" (the hypercube's half corridor width)
+  std::vector<double> start, goal;
+
+  const ob::SpaceInformationPtr& si() const { return gog ? gog->si : cspace->si; }
+  std::uint64_t checks() const {
+    return gog ? gog->checks->value() : cspace->space->checks().value();
+  }
+  // -1 when every state and motion of the path is valid (the re-check's own look-ups are not
+  // part of any run's count: the rows read the counter before it).
+  long first_invalid(const std::vector<std::vector<double>>& points) const {
+    return gog ? first_invalid_step(*gog, points) : first_invalid_motion(*cspace->space, points);
+  }
 };
 
-ob::PlannerPtr grid(const GogSpace& w, const OmplBenchOptions& o, bool smoothing) {
-  auto p = std::make_shared<GridAStarPlanner>(w);
+// OMPL's planners without Benchmark's progress properties (sampling/ompl_planners.hpp says
+// why), for the c-space-only kinds below.
+template <class P>
+class WithoutProgress : public P {
+ public:
+  explicit WithoutProgress(const ob::SpaceInformationPtr& si) : P(si) {
+    this->plannerProgressProperties_.clear();
+  }
+};
+
+// User-facing name -> how to build it: the grid planner in two forms, every planner of
+// sampling's one OMPL table, and the planners of OMPL's own chain and hypercube benchmarks that
+// the table lacks (configuration spaces only: KPIECE1's default projection aborts on a 2D real
+// vector space, sampling/ompl_planners.cpp). The OMPL names must be unique within one log.
+struct PlannerKind {
+  std::string ompl_name;
+  std::function<ob::PlannerPtr(const BenchWorld&, const OmplBenchOptions&)> make;
+  bool cspace_only = false;
+};
+
+ob::PlannerPtr grid(const BenchWorld& w, const OmplBenchOptions& o, bool smoothing) {
+  if (w.cspace) {
+    auto p = std::make_shared<CSpaceGridPlanner>(*w.cspace, w.cells);
+    p->setSmoothing(smoothing);
+    p->setWeight(o.grid_weight);
+    p->setSmoothingBudget(o.smoothing_budget);
+    p->setTimeLimit(o.time_s);
+    return p;
+  }
+  auto p = std::make_shared<GridAStarPlanner>(*w.gog);
   p->setShortcut(smoothing);
   p->setWeight(o.grid_weight);
   p->setSmoothingBudget(o.smoothing_budget);
@@ -52,15 +104,27 @@ ob::PlannerPtr grid(const GogSpace& w, const OmplBenchOptions& o, bool smoothing
   return p;
 }
 
-// FMT* (either connection rule) gets seed 002 eq. 1's sample count and the field's free volume.
-ob::PlannerPtr from_table(const OmplPlannerKind& kind, const GogSpace& w,
-                          const OmplBenchOptions& o) {
-  ob::PlannerPtr p = kind.make(w.si);
+// FMT* (either connection rule) gets seed 002 eq. 1's sample count; on GOG also the field's
+// free volume. A configuration space keeps OMPL's default, the state space's measure: its free
+// volume has no closed form, and an estimate by sampling would spend checks no other planner
+// is charged for.
+ob::PlannerPtr configure(ob::PlannerPtr p, const BenchWorld& w, const OmplBenchOptions& o) {
   if (auto* fmt = dynamic_cast<og::FMT*>(p.get())) {
     fmt->setNumSamples(fmt_samples(o.dims));
-    fmt->setFreeSpaceVolume(env::gog_free_volume(*w.field));
+    if (w.gog) fmt->setFreeSpaceVolume(env::gog_free_volume(*w.gog->field));
   }
+  if (w.range > 0 && p->params().hasParam("range"))
+    p->params().setParam("range", std::to_string(w.range));
   return p;
+}
+
+template <class P>
+PlannerKind cspace_kind(std::string ompl_name) {
+  return {std::move(ompl_name),
+          [](const BenchWorld& w, const OmplBenchOptions& o) {
+            return configure(std::make_shared<WithoutProgress<P>>(w.si()), w, o);
+          },
+          true};
 }
 
 const std::map<std::string, PlannerKind>& planner_table() {
@@ -68,19 +132,59 @@ const std::map<std::string, PlannerKind>& planner_table() {
     std::map<std::string, PlannerKind> t = {
         {"gridastar",
          {"GridAStar",
-          [](const GogSpace& w, const OmplBenchOptions& o) { return grid(w, o, o.shortcut); }}},
+          [](const BenchWorld& w, const OmplBenchOptions& o) { return grid(w, o, o.shortcut); }}},
         // The lattice path as found, for the time and quality of the search alone.
         {"gridastar_lattice",
          {"GridAStarLattice",
-          [](const GogSpace& w, const OmplBenchOptions& o) { return grid(w, o, false); }}},
+          [](const BenchWorld& w, const OmplBenchOptions& o) { return grid(w, o, false); }}},
+        {"kpiece", cspace_kind<og::KPIECE1>("KPIECE1")},
+        {"stride", cspace_kind<og::STRIDE>("STRIDE")},
+        {"prm", cspace_kind<og::PRM>("PRM")},
+        {"est", cspace_kind<og::EST>("EST")},
     };
     for (const OmplPlannerKind& k : ompl_planners())
-      t[k.name] = {k.ompl_name, [&k](const GogSpace& w, const OmplBenchOptions& o) {
-                     return from_table(k, w, o);
+      t[k.name] = {k.ompl_name, [&k](const BenchWorld& w, const OmplBenchOptions& o) {
+                     return configure(k.make(w.si()), w, o);
                    }};
     return t;
   }();
   return table;
+}
+
+std::string experiment_name(const OmplBenchOptions& o) {
+  if (!o.experiment.empty()) return o.experiment;
+  if (o.world == "gog") return "gog-" + std::to_string(o.dims) + "d";
+  return o.world + "-" + std::to_string(o.dims);
+}
+
+// The world and its query: GOG's start and goal are seed 002's (III-B) cell centres; a
+// benchmark space's are the benchmark's own.
+BenchWorld make_world(const OmplBenchOptions& o) {
+  BenchWorld w;
+  if (o.world == "gog") {
+    GogParams gog = o.gog;
+    gog.seed = o.seed;
+    auto field = std::make_shared<const GogField>(o.dims, o.extent, gog);
+    w.gog = make_gog_space(field, o.resolution_cells, parse_motion_check(o.motion));
+    const auto start = adjust_to_free(*field, std::vector<int>(o.dims, 0), +1, "start");
+    const auto goal = adjust_to_free(*field, std::vector<int>(o.dims, o.extent - 1), -1, "goal");
+    for (int a = 0; a < o.dims; ++a) {
+      w.start.push_back(start[a] + 0.5);
+      w.goal.push_back(goal[a] + 0.5);
+    }
+    return w;
+  }
+  BenchmarkSpace b = make_benchmark_space(o.world, o.dims, o.resolution_fraction);
+  w.cells = o.cells > 0 ? o.cells : b.cells;
+  // The lattice's limits (cells per axis, key bits) as an InputError now, not as every run of
+  // the grid planner failing.
+  (void)CSpaceGraph(*b.space, w.cells, CSpaceMoves::seed_pairs);
+  if (const auto* cube = dynamic_cast<const Hypercube*>(b.space.get()))
+    w.range = 0.5 * cube->edge_width();
+  w.cspace = make_cspace_ompl(b.space);
+  w.start = std::move(b.start);
+  w.goal = std::move(b.goal);
+  return w;
 }
 
 }  // namespace
@@ -91,17 +195,32 @@ std::vector<PlannerSpec> ompl_harness_specs() {
        "grid search",
        {"ompl"},
        {"grid_weight", "no_shortcut", "smoothing_budget"},
-       "the GOG grid planner inside OMPL: lattice A*, then simplified and tightened within a "
-       "budget of the search's own time"},
+       "the grid planner inside OMPL: lattice A*, then shortened within a budget of the "
+       "search's own time (GOG: simplified and tightened; chain/hypercube: the c-space "
+       "lattice, then OMPL's PathSimplifier)"},
       {"gridastar_lattice",
        "grid search",
        {"ompl"},
        {"grid_weight"},
-       "the GOG grid planner inside OMPL, its lattice path as found"},
+       "the grid planner inside OMPL, its lattice path as found"},
   };
   for (const OmplPlannerKind& k : ompl_planners())
     specs.push_back({k.name, "ompl", {"ompl"}, {}, k.help});
   return specs;
+}
+
+const std::vector<std::string>& cspace_only_planners() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const auto& [name, kind] : planner_table())
+      if (kind.cspace_only) n.push_back(name);
+    return n;
+  }();
+  return names;
+}
+
+bool is_cspace_world(const std::string& world) {
+  return is_benchmark_space(world);
 }
 
 const std::vector<std::string>& known_planners() {
@@ -115,18 +234,35 @@ unsigned fmt_samples(int dims) {
 }
 
 void validate(const OmplBenchOptions& o) {
-  if (o.dims < 2 || o.dims > 10)
-    throw InputError("--dims must be in 2..10 for the OMPL comparison, got " +
-                     std::to_string(o.dims));
+  const bool cspace = is_cspace_world(o.world);
+  if (!cspace && o.world != "gog")
+    throw InputError("--world must be gog, chain or hypercube, got '" + o.world + "'");
+  const int max_dims = cspace ? kBenchmarkMaxDims : 10;
+  if (o.dims < 2 || o.dims > max_dims)
+    throw InputError("--dims must be in 2.." + std::to_string(max_dims) + " for --world " +
+                     o.world + ", got " + std::to_string(o.dims));
   if (o.extent < 2 || o.extent > 1000)
     throw InputError("--extent must be in 2..1000, got " + std::to_string(o.extent));
+  if (!cspace && (o.cells != 0 || o.resolution_fraction != 0.0))
+    throw InputError("--cells and --resolution-fraction are for --world chain|hypercube");
+  if (o.cells < 0 || o.cells == 1 || o.cells > 65535)
+    throw InputError("--cells must be in 2..65535 (0: the benchmark's default), got " +
+                     std::to_string(o.cells));
+  if (!(o.resolution_fraction >= 0.0 && o.resolution_fraction < 1.0))
+    throw InputError("--resolution-fraction must be in (0, 1) (0: the benchmark's default)");
   if (!(o.time_s > 0.0) || o.time_s > 3600.0)
     throw InputError("--time must be in (0, 3600] seconds");
   if (o.runs < 1 || o.runs > 10000) throw InputError("--runs must be in 1..10000");
   if (o.warmup < 0 || o.warmup > 100) throw InputError("--warmup must be in 0..100");
   if (o.planners.empty()) throw InputError("--planners: name at least one planner");
   for (std::size_t i = 0; i < o.planners.size(); ++i) {
-    PlannerRegistry::get().require("ompl", o.planners[i]);
+    // The c-space-only planners are not in the registry's "ompl" setting, whose every planner
+    // runs on every world of the harness.
+    const auto kind = planner_table().find(o.planners[i]);
+    const bool cspace_only = kind != planner_table().end() && kind->second.cspace_only;
+    if (cspace_only && !cspace)
+      throw InputError("planner '" + o.planners[i] + "' runs on --world chain|hypercube only");
+    if (!cspace_only) PlannerRegistry::get().require("ompl", o.planners[i]);
     for (std::size_t j = 0; j < i; ++j)
       if (o.planners[j] == o.planners[i])
         throw InputError("planner '" + o.planners[i] + "' is listed twice");
@@ -146,35 +282,28 @@ OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o) {
   // OMPL draws every planner's generator from one seeded sequence, so an invocation is
   // reproducible run by run; the seed must be set before any generator exists.
   ompl::RNG::setSeed(o.seed);
-  GogParams gog = o.gog;
-  gog.seed = o.seed;
-  auto field = std::make_shared<const GogField>(o.dims, o.extent, gog);
-  const GogSpace gog_space =
-      make_gog_space(field, o.resolution_cells, parse_motion_check(o.motion));
-
-  // The seed's start and goal (III-B), as cell centres.
-  const auto start_cell = adjust_to_free(*field, std::vector<int>(o.dims, 0), +1, "start");
-  const auto goal_cell = adjust_to_free(*field, std::vector<int>(o.dims, o.extent - 1), -1, "goal");
+  const BenchWorld world = make_world(o);
+  const ob::SpaceInformationPtr& si = world.si();
   OmplBenchResult result;
-  ob::ScopedState<> start(gog_space.space), goal(gog_space.space);
-  cell_centre(start_cell, start.get());
-  cell_centre(goal_cell, goal.get());
+  result.start = world.start;
+  result.goal = world.goal;
+  result.cells = world.cells;
+  ob::ScopedState<> start(si->getStateSpace()), goal(si->getStateSpace());
   for (int a = 0; a < o.dims; ++a) {
-    result.start.push_back(start[a]);
-    result.goal.push_back(goal[a]);
+    start[a] = world.start[a];
+    goal[a] = world.goal[a];
   }
-  result.straight_line = gog_space.si->distance(start.get(), goal.get());
+  result.straight_line = si->distance(start.get(), goal.get());
 
-  og::SimpleSetup setup(gog_space.si);
+  og::SimpleSetup setup(si);
   setup.setStartAndGoalStates(start, goal, 1e-6);
-  setup.setOptimizationObjective(
-      std::make_shared<ob::PathLengthOptimizationObjective>(gog_space.si));
+  setup.setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(si));
 
   std::vector<ob::PlannerPtr> planners;
   std::map<std::string, std::string> user_name;  // OMPL name -> user name
   for (const auto& name : o.planners) {
     const auto& kind = planner_table().at(name);
-    ob::PlannerPtr p = kind.make(gog_space, o);
+    ob::PlannerPtr p = kind.make(world, o);
     p->setName(kind.ompl_name);  // BIT* may amend it (k-nearest BIT* is "kBITstar")
     user_name[p->getName()] = name;
     planners.push_back(p);
@@ -190,8 +319,12 @@ OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o) {
       setup.clear();
     }
 
-  ompl::tools::Benchmark bench(
-      setup, o.experiment.empty() ? "gog-" + std::to_string(o.dims) + "d" : o.experiment);
+  ompl::tools::Benchmark bench(setup, experiment_name(o));
+  // OMPL's benchmarks of these spaces record their size as an experiment parameter.
+  if (o.world == "chain")
+    bench.addExperimentParameter("num_links", "INTEGER", std::to_string(o.dims));
+  if (o.world == "hypercube")
+    bench.addExperimentParameter("num_dims", "INTEGER", std::to_string(o.dims));
   for (const auto& p : planners) bench.addPlanner(p);
 
   // Per-run bookkeeping shared by the events (Benchmark runs one planner at a time; the
@@ -202,7 +335,7 @@ OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o) {
   std::map<std::string, int> run_index;
   Progress progress("hpcplan ompl", o.planners.size() * static_cast<std::size_t>(o.runs));
   bench.setPreRunEvent([&](const ob::PlannerPtr& planner) {
-    checks_before = gog_space.checks->value();
+    checks_before = world.checks();
     improvements.clear();
     planner->getProblemDefinition()->setIntermediateSolutionCallback(
         [&](const ob::Planner*, const std::vector<const ob::State*>&, const ob::Cost cost) {
@@ -210,51 +343,53 @@ OmplBenchResult run_ompl_benchmark(const OmplBenchOptions& o) {
         });
     clock = Stopwatch();
   });
-  bench.setPostRunEvent([&](const ob::PlannerPtr& planner,
-                            ompl::tools::Benchmark::RunProperties& run) {
-    OmplRunRow row;
-    row.planner = user_name.at(planner->getName());
-    row.dims = o.dims;
-    row.run = run_index[row.planner]++;
-    row.seed = o.seed;
-    row.collision_checks = gog_space.checks->value() - checks_before;  // before re-validation
-    if (const auto* grid = dynamic_cast<const GridAStarPlanner*>(planner.get()))
-      row.smoothing_s = grid->lastSmoothingSeconds();
-    const auto t = run.find("time REAL");
-    row.time_s = t != run.end() ? std::stod(t->second) : clock.seconds();
-    const auto pdef = planner->getProblemDefinition();
-    row.solved = pdef->hasExactSolution();
-    row.improvements = improvements;
-    row.anytime = planner->getSpecs().optimizingPaths && !improvements.empty();
-    if (row.solved) {
-      const auto* path = pdef->getSolutionPath()->as<og::PathGeometric>();
-      row.length_final = path->length();
-      std::vector<std::vector<double>> points;
-      const std::size_t n = path->getStateCount();
-      for (std::size_t i = 0; i < n; ++i) {
-        const double* x = path->getState(i)->as<ob::RealVectorStateSpace::StateType>()->values;
-        points.emplace_back(x, x + o.dims);
-      }
-      const bool ends_ok = n > 0 && gog_space.si->distance(path->getState(0), start.get()) < 1e-9 &&
-                           gog_space.si->distance(path->getState(n - 1), goal.get()) < 1e-6;
-      row.path_valid = ends_ok && first_invalid_step(gog_space, points) < 0;
-      if (row.improvements.empty()) row.improvements.emplace_back(row.time_s, row.length_final);
-      row.time_first_s = row.improvements.front().first;
-      row.length_first = row.improvements.front().second;
-      row.quality_first = row.length_first / result.straight_line;
-      row.quality_final = row.length_final / result.straight_line;
-    }
-    run["collision checks INTEGER"] = std::to_string(row.collision_checks);
-    run["path valid BOOLEAN"] = row.path_valid ? "1" : "0";
-    if (row.solved) {
-      run["time first REAL"] = std::to_string(row.time_first_s);
-      run["quality first REAL"] = std::to_string(row.quality_first);
-      run["quality final REAL"] = std::to_string(row.quality_final);
-    }
-    progress.step(row.planner + " run " + std::to_string(row.run));
-    result.rows.push_back(std::move(row));
-    planner->getProblemDefinition()->setIntermediateSolutionCallback(nullptr);
-  });
+  bench.setPostRunEvent(
+      [&](const ob::PlannerPtr& planner, ompl::tools::Benchmark::RunProperties& run) {
+        OmplRunRow row;
+        row.planner = user_name.at(planner->getName());
+        row.dims = o.dims;
+        row.run = run_index[row.planner]++;
+        row.seed = o.seed;
+        row.collision_checks = world.checks() - checks_before;  // before re-validation
+        if (const auto* grid = dynamic_cast<const GridAStarPlanner*>(planner.get()))
+          row.smoothing_s = grid->lastSmoothingSeconds();
+        if (const auto* grid = dynamic_cast<const CSpaceGridPlanner*>(planner.get()))
+          row.smoothing_s = grid->lastSmoothingSeconds();
+        const auto t = run.find("time REAL");
+        row.time_s = t != run.end() ? std::stod(t->second) : clock.seconds();
+        const auto pdef = planner->getProblemDefinition();
+        row.solved = pdef->hasExactSolution();
+        row.improvements = improvements;
+        row.anytime = planner->getSpecs().optimizingPaths && !improvements.empty();
+        if (row.solved) {
+          const auto* path = pdef->getSolutionPath()->as<og::PathGeometric>();
+          row.length_final = path->length();
+          std::vector<std::vector<double>> points;
+          const std::size_t n = path->getStateCount();
+          for (std::size_t i = 0; i < n; ++i) {
+            const double* x = path->getState(i)->as<ob::RealVectorStateSpace::StateType>()->values;
+            points.emplace_back(x, x + o.dims);
+          }
+          const bool ends_ok = n > 0 && si->distance(path->getState(0), start.get()) < 1e-9 &&
+                               si->distance(path->getState(n - 1), goal.get()) < 1e-6;
+          row.path_valid = ends_ok && world.first_invalid(points) < 0;
+          if (row.improvements.empty()) row.improvements.emplace_back(row.time_s, row.length_final);
+          row.time_first_s = row.improvements.front().first;
+          row.length_first = row.improvements.front().second;
+          row.quality_first = row.length_first / result.straight_line;
+          row.quality_final = row.length_final / result.straight_line;
+        }
+        run["collision checks INTEGER"] = std::to_string(row.collision_checks);
+        run["path valid BOOLEAN"] = row.path_valid ? "1" : "0";
+        if (row.solved) {
+          run["time first REAL"] = std::to_string(row.time_first_s);
+          run["quality first REAL"] = std::to_string(row.quality_first);
+          run["quality final REAL"] = std::to_string(row.quality_final);
+        }
+        progress.step(row.planner + " run " + std::to_string(row.run));
+        result.rows.push_back(std::move(row));
+        planner->getProblemDefinition()->setIntermediateSolutionCallback(nullptr);
+      });
 
   ompl::tools::Benchmark::Request request(o.time_s, o.memory_mb, static_cast<unsigned>(o.runs),
                                           0.05, false, false, false);

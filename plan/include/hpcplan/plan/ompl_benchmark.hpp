@@ -1,7 +1,14 @@
 #pragma once
 // Seed 002's comparison in one harness: the grid planner and OMPL's sampling planners run
-// inside ompl::tools::Benchmark on one GOG problem (same space, checker, motion validator and
-// start/goal states), and every run becomes a row with the seed's metrics.
+// inside ompl::tools::Benchmark on one problem (same space, checker, motion validator and
+// start/goal states), and every run becomes a row with the seed's metrics. The problem is the
+// GOG field (world "gog", sampling/gog_space.hpp) or one of OMPL's own dimension-scalable
+// benchmarks as a configuration space (worlds "chain" and "hypercube",
+// env/benchmark_spaces.hpp, through sampling/cspace_ompl.hpp): there the grid planner is the
+// c-space lattice planner (plan/cspace_grid_planner.hpp), the query is the benchmark's own
+// (KinematicChainBenchmark's, HypercubeBenchmark's), the log's experiment is "chain-<n>" /
+// "hypercube-<d>" with the benchmark's parameter (num_links / num_dims), and on the hypercube
+// every planner with a "range" gets half the corridor's width, as HypercubeBenchmark sets.
 //
 // Per run the harness records, besides Benchmark's own properties (which go to the OMPL log):
 //  - every solution improvement (time, length) through the ProblemDefinition's intermediate
@@ -16,8 +23,12 @@
 //    between the first quality and the reference quality, the best final quality any run of
 //    any planner reached in this invocation;
 //  - final quality at the time limit; collision checks (the shared world's count);
-//  - path validity, re-checked independently of OMPL (sampling/gog_space.hpp).
-// Quality is length / straight-line distance (seed 002 eq. 2).
+//  - path validity, re-checked independently of OMPL: on GOG with the field's own look-ups
+//    (sampling/gog_space.hpp), on a configuration space every motion's samples with the
+//    space's one-state test (sampling/cspace_ompl.hpp), and the path's ends must be the
+//    query's.
+// Quality is length / straight-line distance (seed 002 eq. 2); on a configuration space both
+// in the space's metric (joint-space Euclidean, periodic axes the short way).
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -28,9 +39,16 @@
 namespace hpcplan::plan {
 
 struct OmplBenchOptions {
-  int dims = 2;
+  std::string world = "gog";  // gog | chain | hypercube
+  int dims = 2;               // gog: 2..10; chain (links) and hypercube: 2..16
+  // GOG only: the field.
   int extent = 100;
   GogParams gog;
+  // chain and hypercube only: the lattice's cells per axis (0: the benchmark's default,
+  // env/benchmark_spaces.hpp) and the motion-check resolution as a fraction of the space's
+  // bounds diagonal (0: the benchmark's, as OMPL's demos set it: 0.01 chain, 0.001 hypercube).
+  int cells = 0;
+  double resolution_fraction = 0.0;
   std::vector<std::string> planners{"gridastar", "bitstar", "fmt"};
   double time_s = 5.0;  // per run
   int runs = 10;
@@ -38,14 +56,17 @@ struct OmplBenchOptions {
   // planner listed does not pay alone for the process's first searches.
   int warmup = 0;
   std::uint64_t seed = 1;         // GOG field and OMPL's random generator
-  double resolution_cells = 0.1;  // discrete motion checks: spacing, in cell widths
-  std::string motion = "exact";   // exact | discrete (sampling/gog_space.hpp)
+  double resolution_cells = 0.1;  // GOG: discrete motion checks' spacing, in cell widths
+  std::string motion = "exact";   // GOG: exact | discrete (sampling/gog_space.hpp)
   bool shortcut = true;           // grid planner: shorten its path in continuous space
   double grid_weight = 1.0;       // grid planner: 1 = A*
   double smoothing_budget = 1.0;  // grid planner: smoothing time / search time (0 = converge)
   double memory_mb = 8192.0;      // Benchmark's per-run memory limit
-  std::string experiment;         // name in the log; default "gog-<d>d"
+  std::string experiment;  // name in the log; default "gog-<d>d", "chain-<n>", "hypercube-<d>"
 };
+
+// Whether a world is a configuration space (chain, hypercube) rather than the GOG field.
+bool is_cspace_world(const std::string& world);
 
 struct OmplRunRow {
   std::string planner;  // the name the user asked for (gridastar, bitstar, fmt, ...)
@@ -70,12 +91,17 @@ struct OmplBenchResult {
   std::vector<OmplRunRow> rows;
   double straight_line = 0.0;
   double reference_quality = -1.0;  // best final quality of any run (-1 if none solved)
-  std::vector<double> start, goal;  // the continuous start and goal (cell centres)
+  std::vector<double> start, goal;  // the continuous start and goal (GOG: cell centres)
+  int cells = 0;                    // c-space worlds: the lattice's cells per axis as run
   std::string ompl_log;             // Benchmark's own log, for ompl_benchmark_statistics.py
 };
 
-// Names accepted in OmplBenchOptions::planners.
+// Names accepted in OmplBenchOptions::planners on every world (the registry's "ompl" setting).
 const std::vector<std::string>& known_planners();
+// Names accepted besides on chain and hypercube only: kpiece, stride, prm, est, the planners of
+// OMPL's own benchmarks of those spaces that sampling's table lacks (KPIECE1's default
+// projection aborts on a 2D real vector space, sampling/ompl_planners.cpp).
+const std::vector<std::string>& cspace_only_planners();
 
 // FMT*'s sample count for dimension d (seed 002 eq. 1): 2000 + 1500 (d - 2)^2.
 unsigned fmt_samples(int dims);
