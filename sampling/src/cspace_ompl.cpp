@@ -6,6 +6,8 @@
 #include <span>
 #include <utility>
 
+#include <ompl/base/ProjectionEvaluator.h>
+
 namespace ob = ompl::base;
 
 namespace hpcplan::sampling {
@@ -29,6 +31,33 @@ bool outside_bounded_axes(const ConfigSpace& space, const double* x) {
       return true;
   return false;
 }
+
+// The state's coordinates as its projection, with cells a twentieth of each axis (the
+// grid KPIECE1 and STRIDE's projected density count motions in).
+class AxesProjection : public ob::ProjectionEvaluator {
+ public:
+  AxesProjection(const ob::StateSpace* space, const std::vector<AxisBounds>& axes)
+      : ob::ProjectionEvaluator(space), axes_(axes) {
+    bounds_ = ob::RealVectorBounds(static_cast<unsigned>(axes_.size()));
+    for (std::size_t k = 0; k < axes_.size(); ++k) {
+      bounds_.setLow(k, axes_[k].lower);
+      bounds_.setHigh(k, axes_[k].upper);
+    }
+  }
+  unsigned int getDimension() const override { return static_cast<unsigned>(axes_.size()); }
+  void defaultCellSizes() override {
+    cellSizes_.resize(axes_.size());
+    for (std::size_t k = 0; k < axes_.size(); ++k)
+      cellSizes_[k] = (axes_[k].upper - axes_[k].lower) / 20.0;
+  }
+  void project(const ob::State* state, Eigen::Ref<Eigen::VectorXd> projection) const override {
+    const double* x = values_of(state);
+    for (std::size_t k = 0; k < axes_.size(); ++k) projection(static_cast<Eigen::Index>(k)) = x[k];
+  }
+
+ private:
+  std::vector<AxisBounds> axes_;
+};
 
 }  // namespace
 
@@ -123,6 +152,14 @@ double CSpaceStateSpace::getMaximumExtent() const {
     s += w * w;
   }
   return std::sqrt(s);
+}
+
+void CSpaceStateSpace::registerProjections() {
+  if (dimension_ > 2) {
+    ob::RealVectorStateSpace::registerProjections();
+    return;
+  }
+  registerDefaultProjection(std::make_shared<AxesProjection>(this, space_->axes()));
 }
 
 // ---------------------------------------------------------------------------------------------

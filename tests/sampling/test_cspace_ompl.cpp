@@ -15,6 +15,7 @@
 #include <ompl/base/ScopedState.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/SimpleSetup.h>
+#include <ompl/geometric/planners/kpiece/KPIECE1.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Console.h>
 
@@ -217,6 +218,25 @@ TEST_P(RrtConnect, SolvesDimensionFourWithAValidPath) {
 
 INSTANTIATE_TEST_SUITE_P(ChainAndHypercube, RrtConnect, ::testing::Values("chain", "hypercube"));
 
+// KPIECE1 on a 2D space: through the adapter's own axes projection (OMPL 1.5's identity
+// projection of a 2D real vector space aborted it on an Eigen assertion).
+TEST(CSpaceOmpl, Kpiece1SolvesTheTwoDimensionalHypercube) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  const BenchmarkSpace b = make_benchmark_space("hypercube", 2);
+  const CSpaceOmpl s = make_cspace_ompl(b.space);
+  og::SimpleSetup setup(s.si);
+  ob::ScopedState<> start(s.state_space), goal(s.state_space);
+  set(start, b.start);
+  set(goal, b.goal);
+  setup.setStartAndGoalStates(start, goal, 1e-6);
+  setup.setPlanner(std::make_shared<og::KPIECE1>(s.si));
+  ASSERT_EQ(setup.solve(30.0), ob::PlannerStatus::EXACT_SOLUTION);
+  std::vector<State> points;
+  for (std::size_t i = 0; i < setup.getSolutionPath().getStateCount(); ++i)
+    points.push_back(values(setup.getSolutionPath().getState(i), 2));
+  EXPECT_EQ(first_invalid_motion(*b.space, points), -1);
+}
+
 // The grid planner inside OMPL is solve_grid on the same problem: the same lattice path, so
 // the OMPL path's length is the report's cost.
 class GridInOmpl : public ::testing::TestWithParam<std::string> {};
@@ -302,6 +322,13 @@ TEST(CSpaceOmplBenchmark, BadOptionsAreInputErrors) {
   EXPECT_NO_THROW(plan::validate(o));
   o.cells = 1;
   EXPECT_THROW(plan::validate(o), InputError);
+  // OMPL's own 2-link query starts in collision: refused once, before any run.
+  o.cells = 0;
+  o.world = "chain";
+  o.dims = 2;
+  o.planners = {"rrtconnect"};
+  EXPECT_NO_THROW(plan::validate(o));
+  EXPECT_THROW(plan::run_ompl_benchmark(o), InputError);
 }
 
 TEST(CSpaceOmplBenchmark, ChainRunsAreRecordedValidatedAndNamed) {

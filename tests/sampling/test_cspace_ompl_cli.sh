@@ -72,4 +72,5 @@ bad "--density with the hypercube" --world hypercube --dims 4 --density 0.3
 bad "--cells with GOG" --world gog --dims 2 --cells 8
 bad "one cell" --world chain --dims 4 --cells 1
 bad "c-space planner on GOG" --world gog --dims 2 --planners kpiece
+bad "the 2-link chain's start is in collision" --world chain --dims 2
 echo "cspace_ompl_cli: ok"

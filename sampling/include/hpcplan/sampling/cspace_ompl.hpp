@@ -55,6 +55,10 @@ class CSpaceStateSpace : public ompl::base::RealVectorStateSpace {
   // The largest distance two states can have in this metric: half a period on a periodic
   // axis, the full width on a bounded one. Resolution fractions refer to it.
   double getMaximumExtent() const override;
+  // KPIECE1 and STRIDE's default projection: OMPL's random linear one from 3 axes up; below,
+  // the axes themselves through a projection of our own (OMPL 1.5's identity projection of a
+  // 2D real vector space fails an Eigen assertion and aborts in KPIECE1).
+  void registerProjections() override;
 
  private:
   std::shared_ptr<const ConfigSpace> space_;
