@@ -1,5 +1,10 @@
 #include "hpcplan/cli/grid_options.hpp"
 
+#include <cmath>
+#include <cstdlib>
+
+#include "hpcplan/env/benchmark_spaces.hpp"
+
 #include "hpcplan/cli/number_options.hpp"
 #include "hpcplan/core/atomic_file.hpp"
 #include "hpcplan/core/error.hpp"
@@ -11,13 +16,32 @@ namespace hpcplan::cli {
 
 void add_grid_options(CLI::App* cmd, GridArgs& a) {
   auto& p = a.problem;
-  a.dims_option = add_number(cmd, "--dims", p.dims, "Dimensions, 1..16 (required without --map)", 1, 16);
+  a.dims_option =
+      add_number(cmd, "--dims", p.dims, "Dimensions, 1..16 (required without --map)", 1, 16);
   cmd->add_option("--map", a.map,
                   "Plan on this occupancy file instead of GOG: a MovingAI .map (8-connected, no "
                   "corner cutting), a .3dmap voxel map (26-connected) or a NumPy .npy array "
                   "(bool/uint8, nonzero = blocked, 1..16 dimensions); --start/--goal in its "
                   "coordinates, x first (x = a .map's column, an array's last axis)")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--world", a.world,
+                  "Plan on a mechanism's configuration space instead of GOG: chain (OMPL's "
+                  "kinematic chain, --dims links in the horn) | hypercube (OMPL's narrow passage "
+                  "along the cube's edges); --start/--goal are then states in its coordinates "
+                  "(radians, [0,1]), default the benchmark's query");
+  add_number(cmd, "--cells", a.cells,
+             "--world: lattice vertices per axis (0 = the space's default: 4 x links for the "
+             "chain, 11 for the hypercube)",
+             0, 65535)
+      ->capture_default_str();
+  cmd->add_option("--moves", a.moves,
+                  "--world: lattice moves, pairs (one or two axes, seed 002's rule) | axes (one)")
+      ->capture_default_str();
+  add_number(cmd, "--resolution", a.resolution,
+             "--world: motion-check step as a fraction of the space's extent (0 = the "
+             "benchmark's: 0.01 chain, 0.001 hypercube)",
+             0, 1)
+      ->capture_default_str();
   cmd->add_option("--algo", a.algo,
                   "Planner (hpcplan planners --world grid): " + planner_names("grid"))
       ->capture_default_str();
@@ -25,8 +49,9 @@ void add_grid_options(CLI::App* cmd, GridArgs& a) {
   cmd->add_option("--heuristic", a.heuristic, "lattice (exact free-space cost) | euclidean")
       ->capture_default_str();
   a.gog_options.push_back(add_number(cmd, "--seed", p.gog.seed, "GOG seed")->capture_default_str());
-  a.gog_options.push_back(add_number(cmd, "--extent", p.extent, "Lattice states per axis, 2..65535", 2, 65535)
-      ->capture_default_str());
+  a.gog_options.push_back(
+      add_number(cmd, "--extent", p.extent, "Lattice states per axis, 2..65535", 2, 65535)
+          ->capture_default_str());
   cmd->add_option("--start", a.start, "Start state c1,c2,... (default: corner 0, adjusted)");
   cmd->add_option("--goal", a.goal, "Goal state (default: corner extent-1, adjusted)");
   add_param(cmd, "max_states", a.options.max_states)->capture_default_str();
@@ -42,13 +67,16 @@ void add_grid_options(CLI::App* cmd, GridArgs& a) {
                       "seed (1 or 2 axes) | full (d <= 4); with --map: the format's own (seed "
                       "for .map and .npy, full for .3dmap)")
           ->capture_default_str();
-  a.gog_options.push_back(add_number(cmd, "--threshold", p.gog.threshold, "GOG threshold c_v (0 = from --density)", 0, 49)
-      ->capture_default_str());
+  a.gog_options.push_back(add_number(cmd, "--threshold", p.gog.threshold,
+                                     "GOG threshold c_v (0 = from --density)", 0, 49)
+                              ->capture_default_str());
   a.gog_options.push_back(add_number(cmd, "--density", p.gog.density,
-             "Blocked fraction aimed at by the automatic threshold", 0, 1)
-      ->capture_default_str());
-  a.gog_options.push_back(add_number(cmd, "--gog-shift-p", p.gog.shift_p, "GOG b_p", 0, 63)->capture_default_str());
-  a.gog_options.push_back(add_number(cmd, "--gog-shift-v", p.gog.shift_v, "GOG b_v", 0, 61)->capture_default_str());
+                                     "Blocked fraction aimed at by the automatic threshold", 0, 1)
+                              ->capture_default_str());
+  a.gog_options.push_back(
+      add_number(cmd, "--gog-shift-p", p.gog.shift_p, "GOG b_p", 0, 63)->capture_default_str());
+  a.gog_options.push_back(
+      add_number(cmd, "--gog-shift-v", p.gog.shift_v, "GOG b_v", 0, 61)->capture_default_str());
   const char* ckpt = "Checkpoints (dense engine: --algo bfs or dijkstra)";
   cmd->add_option("--checkpoint", a.options.checkpoint,
                   "Write the search's state to FILE (FILE.r<rank> per rank under mpirun) at a "
@@ -115,6 +143,54 @@ LoadedMap load_map(const std::string& path, const std::optional<std::vector<int>
   return m;
 }
 
+namespace {
+
+// "0.1,-2,3e-1" -> {0.1, -2, 0.3}; InputError naming `what` on anything malformed.
+std::vector<double> parse_reals(const std::string& text, const char* what) {
+  std::vector<double> out;
+  std::size_t at = 0;
+  while (at <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', at), text.size());
+    const std::string item = text.substr(at, comma - at);
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v))
+      throw InputError(std::string(what) + " must be numbers separated by commas, got '" + text +
+                       "'");
+    out.push_back(v);
+    at = comma + 1;
+  }
+  return out;
+}
+
+// --world: the space, its lattice and its query; GOG's and the maps' own options refused.
+void prepare_cspace_problem(GridArgs& a, bool dims_given) {
+  if (!a.map.empty()) throw InputError("--world and --map are two worlds: give one");
+  for (const CLI::Option* o : a.gog_options)
+    if (o != nullptr && o->count() > 0)
+      throw InputError(o->get_name() + " describes the GOG field; --world plans on " + a.world +
+                       "'s configuration space");
+  if (a.connectivity_option != nullptr && a.connectivity_option->count() > 0)
+    throw InputError("--connectivity is the GOG lattice's; a --world lattice takes --moves");
+  if (!dims_given)
+    throw InputError(
+        "--dims is required with --world (the chain's links, the "
+        "hypercube's dimensions)");
+  const BenchmarkSpace b = make_benchmark_space(a.world, a.problem.dims, a.resolution);
+  GridProblem p;
+  p.dims = a.problem.dims;
+  p.extent = a.cells > 0 ? a.cells : b.cells;
+  CSpaceQuery q;
+  q.space = b.space;
+  q.moves = parse_cspace_moves(a.moves);
+  q.start = a.start.empty() ? b.start : parse_reals(a.start, "--start");
+  q.goal = a.goal.empty() ? b.goal : parse_reals(a.goal, "--goal");
+  p.cspace = std::move(q);
+  a.problem = std::move(p);
+}
+
+}  // namespace
+
 void prepare_grid_run(GridArgs& a, int rank, int ranks, const RunControl& control) {
   a.options.algorithm = parse_grid_algorithm(a.algo);
   a.options.heuristic = parse_heuristic(a.heuristic);
@@ -122,14 +198,21 @@ void prepare_grid_run(GridArgs& a, int rank, int ranks, const RunControl& contro
   a.options.engine = parse_engine(a.engine);
   if (a.weight_option != nullptr && a.weight_option->count() > 0) a.options.weight = a.weight;
   a.options.jump_points = !a.no_jump_points;
-  if (!a.start.empty()) a.problem.start = parse_coordinates(a.start, "--start");
-  if (!a.goal.empty()) a.problem.goal = parse_coordinates(a.goal, "--goal");
   const bool dims_given = a.dims_option != nullptr && a.dims_option->count() > 0;
-  if (!a.map.empty()) {
+  if (!a.world.empty()) {
+    prepare_cspace_problem(a, dims_given);
+  } else {
+    if (a.cells != 0 || a.resolution != 0.0)
+      throw InputError("--cells and --resolution describe a --world's lattice; give --world");
+    if (!a.start.empty()) a.problem.start = parse_coordinates(a.start, "--start");
+    if (!a.goal.empty()) a.problem.goal = parse_coordinates(a.goal, "--goal");
+  }
+  if (a.world.empty() && !a.map.empty()) {
     for (const CLI::Option* o : a.gog_options)
       if (o != nullptr && o->count() > 0)
-        throw InputError(o->get_name() + " describes the GOG field; --map plans on the map's own "
-                                         "obstacles");
+        throw InputError(o->get_name() +
+                         " describes the GOG field; --map plans on the map's own "
+                         "obstacles");
     const bool chosen = a.connectivity_option != nullptr && a.connectivity_option->count() > 0;
     LoadedMap m = load_map(a.map, a.problem.start, a.problem.connectivity);
     if (dims_given && a.problem.dims != m.grid->dims())
@@ -139,7 +222,7 @@ void prepare_grid_run(GridArgs& a, int rank, int ranks, const RunControl& contro
     p.start = a.problem.start;
     p.goal = a.problem.goal;
     a.problem = std::move(p);
-  } else if (a.dims_option != nullptr && !dims_given) {
+  } else if (a.world.empty() && a.dims_option != nullptr && !dims_given) {
     throw InputError("--dims is required (or --map FILE to plan on a map)");
   }
   if (!a.output.empty()) require_writable_destination(a.output, "--output");

@@ -135,6 +135,7 @@ void run_distributed(const ObstacleSource& field, const GridProblem& problem, co
 
 GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOptions& options,
                                   const DistGridOptions& dist, const mpi::Communicator& comm) {
+  if (problem.cspace) return solve_cspace_distributed(problem, options, dist, comm);
   hpcplan::validate(problem, options);
   validate(dist, problem.extent, comm.size(), problem.dims);
   Stopwatch setup;

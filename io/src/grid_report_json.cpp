@@ -116,12 +116,33 @@ nlohmann::json to_json(const GridReport& report, bool include_path) {
   j["connectivity"] = p.connectivity;
   j["obstacles"] = p.obstacles;
   j["extent"] = p.extent;
+  if (report.cspace) {
+    const CSpaceReport& c = *report.cspace;
+    nlohmann::json cs;
+    cs["world"] = c.world;
+    cs["cells"] = c.cells;
+    cs["moves"] = c.moves;
+    cs["resolution"] = c.resolution;
+    cs["periodic"] = c.periodic;
+    cs["start"] = c.start;
+    cs["goal"] = c.goal;
+    cs["start_vertex"] = c.start_vertex;
+    cs["goal_vertex"] = c.goal_vertex;
+    cs["start_connection"] = c.start_connection;
+    cs["goal_connection"] = c.goal_connection;
+    if (!c.unconnected.empty()) cs["unconnected"] = c.unconnected;
+    cs["path_rechecked"] = c.path_rechecked;
+    cs["check_batches"] = c.batches;
+    cs["metric"] = "euclidean (periodic axes the short way)";
+    j["cspace"] = cs;
+    j["world"] = c.world;
+  }
   if (p.obstacles == "gog") {
     j["seed"] = p.seed;
     j["threshold"] = p.threshold;
     j["gog_shift_p"] = p.shift_p;
     j["gog_shift_v"] = p.shift_v;
-  } else {
+  } else if (p.obstacles != "cspace") {
     j["map"] = p.map;
     j["shape"] = p.shape;  // x first
     j["map_checksum"] = p.map_checksum;
@@ -171,7 +192,11 @@ nlohmann::json to_json(const GridReport& report, bool include_path) {
                                           : nlohmann::json(nullptr);
     j["serial_reference"] = s;
   }
-  if (include_path) j["path"] = r.path;
+  if (include_path) {
+    j["path"] = r.path;
+    // On a configuration space, the path in its own coordinates too (start, vertices, goal).
+    if (report.cspace) j["path_states"] = report.cspace->path;
+  }
   return j;
 }
 
@@ -185,7 +210,14 @@ std::string to_summary(const GridReport& report) {
   };
   std::ostringstream o;
   char line[256];
-  if (p.obstacles == "gog") {
+  if (report.cspace) {
+    const CSpaceReport& c = *report.cspace;
+    o << "hpcplan grid: " << op.algorithm << " on " << c.world << " (" << p.dims << " axes), "
+      << c.cells << " cells per axis, " << d.ranks << " rank(s)\n";
+    std::snprintf(line, sizeof line,
+                  "  lattice    %s moves, motions checked every %.4g, %llu batches of checks\n",
+                  c.moves.c_str(), c.resolution, static_cast<unsigned long long>(c.batches));
+  } else if (p.obstacles == "gog") {
     o << "hpcplan grid: " << op.algorithm << " in " << p.dims << "D, extent " << p.extent
       << ", seed " << p.seed << ", " << d.ranks << " rank(s)\n";
     std::snprintf(line, sizeof line, "  field      threshold %d, %.1f%% of states blocked\n",
@@ -200,8 +232,26 @@ std::string to_summary(const GridReport& report) {
                   p.connectivity.c_str(), 100.0 * p.blocked_fraction);
   }
   o << line;
-  o << "  start      " << coords(p.start) << (p.start_adjusted ? " (adjusted)" : "") << "\n";
-  o << "  goal       " << coords(p.goal) << (p.goal_adjusted ? " (adjusted)" : "") << "\n";
+  if (report.cspace) {
+    const CSpaceReport& c = *report.cspace;
+    auto reals = [](const std::vector<double>& q) {
+      std::string s = "(";
+      char v[32];
+      for (std::size_t i = 0; i < q.size(); ++i) {
+        std::snprintf(v, sizeof v, "%s%.4g", i ? "," : "", q[i]);
+        s += v;
+      }
+      return s + ")";
+    };
+    o << "  start      " << reals(c.start) << ", joins vertex " << coords(p.start) << "\n";
+    o << "  goal       " << reals(c.goal) << ", joins vertex " << coords(p.goal) << "\n";
+    if (!c.unconnected.empty())
+      o << "  note       the " << c.unconnected
+        << " joins no lattice vertex next to it by a valid motion (try more --cells)\n";
+  } else {
+    o << "  start      " << coords(p.start) << (p.start_adjusted ? " (adjusted)" : "") << "\n";
+    o << "  goal       " << coords(p.goal) << (p.goal_adjusted ? " (adjusted)" : "") << "\n";
+  }
   o << "  status     " << search::to_string(r.status);
   if (!report.interrupted_by.empty())
     o << " by " << report.interrupted_by << "; continue with --restart " << report.checkpoint;

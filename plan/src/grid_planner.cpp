@@ -1,4 +1,5 @@
 #include "hpcplan/plan/grid_planner.hpp"
+#include "hpcplan/plan/cspace_planner.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,6 +33,7 @@ ObstacleSource obstacles_of(const GridProblem& problem, std::optional<GogField>&
 }
 
 GridReport solve_grid(const GridProblem& problem, const GridSearchOptions& options) {
+  if (problem.cspace) return solve_cspace(problem, options);
   validate(problem, options);
   if (problem.occupancy) return solve_grid(*problem.occupancy, problem, options);
   Stopwatch setup;

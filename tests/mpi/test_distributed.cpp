@@ -22,6 +22,7 @@
 #include "hpcplan/dense/dense_checkpoint.hpp"
 #include "hpcplan/dense/slab_plan.hpp"
 #include "hpcplan/distributed/grid_planner_mpi.hpp"
+#include "hpcplan/env/benchmark_spaces.hpp"
 #include "hpcplan/mpi/communicator.hpp"
 #include "hpcplan/partition/ownership.hpp"
 #include "hpcplan/partition/rank_simulation.hpp"
@@ -296,6 +297,52 @@ TEST(Distributed, StartEqualsGoal) {
     EXPECT_EQ(r.result.status, search::Status::solved);
     EXPECT_EQ(r.result.cost, 0.0);
     EXPECT_EQ(r.result.hops, 0u);
+  }
+}
+
+// Configuration spaces (OMPL's kinematic chain and hypercube): every rank count and schedule
+// gives the serial engine's cost (which the unit tests check against their own Dijkstra), BFS
+// its fewest moves, and rank 0's path is re-checked motion by motion (path_rechecked).
+TEST(CSpaceRanks, ChainAndHypercubeGiveTheSerialCost) {
+  struct Case {
+    const char* world;
+    int dims, cells;
+  };
+  for (const Case c : {Case{"chain", 4, 16}, Case{"chain", 5, 20}, Case{"hypercube", 4, 11}}) {
+    const BenchmarkSpace b = make_benchmark_space(c.world, c.dims);
+    GridProblem p;
+    p.dims = c.dims;
+    p.extent = c.cells;
+    p.cspace = CSpaceQuery{b.space, CSpaceMoves::seed_pairs, b.start, b.goal};
+    for (const char* algo : {"astar", "dijkstra", "bfs", "wastar"}) {
+      for (const char* mode : {"async", "bulk"}) {
+        if (std::string(algo) == "bfs" && std::string(mode) == "bulk") continue;  // level-sync
+        SCOPED_TRACE(std::string(c.world) + " " + std::to_string(c.dims) + " " + algo + " " +
+                     mode);
+        GridSearchOptions o;
+        o.algorithm = parse_grid_algorithm(algo);
+        const GridReport serial = solve_grid(p, o);
+        distributed::DistGridOptions d;
+        d.scheme = distributed::parse_scheme(mode);
+        d.sync_every = 64;
+        const GridReport r = distributed::solve_grid_distributed(p, o, d, *g_comm);
+        ASSERT_EQ(serial.result.status, search::Status::solved);
+        ASSERT_EQ(r.result.status, search::Status::solved);
+        if (g_comm->rank() != 0) continue;
+        ASSERT_TRUE(r.cspace);
+        EXPECT_TRUE(r.cspace->path_rechecked);
+        if (o.algorithm == GridAlgorithm::wastar) {
+          const GridReport optimal = solve_grid(p, GridSearchOptions{});
+          EXPECT_LE(r.result.cost, 2.0 * optimal.result.cost + 1e-9);
+          EXPECT_GE(r.result.cost, optimal.result.cost - 1e-9);
+        } else if (o.algorithm == GridAlgorithm::bfs) {
+          EXPECT_EQ(r.result.hops, serial.result.hops);
+        } else {
+          EXPECT_NEAR(r.result.cost, serial.result.cost, 1e-9);
+        }
+        EXPECT_EQ(r.distribution.ranks, g_comm->size());
+      }
+    }
   }
 }
 

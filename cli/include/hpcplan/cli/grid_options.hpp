@@ -29,6 +29,12 @@ struct GridArgs {
   std::string field_out;
   // --map FILE: plan on the occupancy grid of a .map, .3dmap or .npy instead of GOG.
   std::string map;
+  // --world chain|hypercube: plan on that configuration space's lattice (--cells per axis,
+  // --moves, --resolution); --start/--goal are then states in the space's coordinates.
+  std::string world;
+  int cells = 0;  // 0: the space's default
+  std::string moves = "pairs";
+  double resolution = 0.0;  // 0: the space's default fraction of its extent
   double weight = 2.0;
   bool no_jump_points = false;
   const CLI::Option* weight_option = nullptr;  // given or not (only weighted A* takes one)

@@ -40,6 +40,11 @@ void validate(const DistGridOptions& options, int extent = 0, int ranks = 0, int
 GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOptions& options,
                                   const DistGridOptions& dist, const mpi::Communicator& comm);
 
+// The same on a configuration space (GridProblem::cspace, plan/cspace_planner.hpp): hashed
+// ownership only; solve_grid_distributed hands such a problem here.
+GridReport solve_cspace_distributed(const GridProblem& problem, const GridSearchOptions& options,
+                                    const DistGridOptions& dist, const mpi::Communicator& comm);
+
 // The distance field (plan/distance_field.hpp) over the ranks' slabs of the dense engine: every
 // rank fills its slab's cells, rank 0 gathers them; threads and memory budget agreed as above.
 // Collective; the field is whole on rank 0 only.

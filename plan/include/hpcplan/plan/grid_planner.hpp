@@ -79,6 +79,22 @@ struct GridResult : Result<std::vector<int>> {
   double setup_ms = 0.0;
 };
 
+// The report's part about the space (GridReport::cspace).
+struct CSpaceReport {
+  std::string world;  // the space's name ("chain", "hypercube", a user's)
+  int cells = 0;
+  std::string moves;
+  double resolution = 0.0;
+  std::vector<bool> periodic;
+  std::vector<double> start, goal;                // as asked, in the space's coordinates
+  std::vector<double> start_vertex, goal_vertex;  // where they joined the lattice
+  double start_connection = 0.0, goal_connection = 0.0;  // those motions' lengths
+  std::string unconnected;                        // "start" or "goal" when one joined nothing
+  std::vector<std::vector<double>> path;          // keep_path: start, vertices, goal
+  bool path_rechecked = false;
+  std::uint64_t batches = 0;  // batches of states tested (this rank's, or the sum)
+};
+
 struct GridReport {
   GridProblemReport problem;
   GridOptionsReport options;
@@ -86,6 +102,7 @@ struct GridReport {
   GridResult result;
   std::optional<SerialReference> serial;
   std::optional<dense::Figures> dense;  // the dense engine's own figures, when it ran
+  std::optional<CSpaceReport> cspace;   // the configuration space's part, when it planned on one
   // Checkpoints (set by the command line): the files continued from and written (the user's
   // FILE; one per rank), and the signal that interrupted the run ("SIGUSR1", ...).
   std::string restarted_from, checkpoint, interrupted_by;

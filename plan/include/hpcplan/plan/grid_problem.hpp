@@ -13,6 +13,8 @@
 
 #include "hpcplan/env/gog.hpp"
 #include "hpcplan/env/obstacle_source.hpp"
+#include "hpcplan/env/config_space.hpp"
+#include "hpcplan/graph/cspace_graph.hpp"
 #include "hpcplan/graph/lattice_graph.hpp"
 
 namespace hpcplan {
@@ -34,6 +36,15 @@ std::string_view to_string(Connectivity c);
 // "3,4,5" -> {3,4,5}; InputError naming `what` on anything malformed.
 std::vector<int> parse_coordinates(std::string_view text, std::string_view what);
 
+// A query on a configuration space (env/config_space.hpp): the space, the lattice's moves, and
+// start and goal in the space's own coordinates (off the lattice: each joins it by a checked
+// motion to a nearby vertex).
+struct CSpaceQuery {
+  std::shared_ptr<const ConfigSpace> space;
+  CSpaceMoves moves = CSpaceMoves::seed_pairs;
+  std::vector<double> start, goal;
+};
+
 struct GridProblem {
   int dims = 2;
   int extent = 100;
@@ -42,6 +53,9 @@ struct GridProblem {
   // occupancy_problem() sets them). Shared, so many queries on one map hold one copy.
   std::shared_ptr<const OccupancyGrid> occupancy;
   Connectivity connectivity = Connectivity::seed_pairs;
+  // Set: the problem plans on this configuration space's lattice (plan/cspace_planner.hpp),
+  // `extent` cells per axis, dims the space's; start and goal are then cspace->start/goal.
+  std::optional<CSpaceQuery> cspace;
   std::optional<std::vector<int>> start;  // default: (0,...,0), adjusted until free
   std::optional<std::vector<int>> goal;   // default: (extent-1,...), adjusted until free
 };

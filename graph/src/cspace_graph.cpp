@@ -1,0 +1,261 @@
+#include "hpcplan/graph/cspace_graph.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+#include "hpcplan/core/error.hpp"
+
+namespace hpcplan {
+
+std::string_view to_string(CSpaceMoves m) {
+  return m == CSpaceMoves::axes ? "axes" : "seed_pairs";
+}
+
+CSpaceMoves parse_cspace_moves(std::string_view name) {
+  if (name == "axes") return CSpaceMoves::axes;
+  if (name == "seed" || name == "seed_pairs" || name == "pairs") return CSpaceMoves::seed_pairs;
+  throw InputError("unknown --moves '" + std::string(name) + "' (expected axes or pairs)");
+}
+
+namespace {
+
+KeyLayout checked_layout(const ConfigSpace& space, int cells) {
+  const int d = space.dims();
+  if (d > kMaxDims)
+    throw InputError(space.name() + ": the lattice engines take at most " +
+                     std::to_string(kMaxDims) + " axes, got " + std::to_string(d));
+  bool periodic = false;
+  for (const auto& a : space.axes()) periodic = periodic || a.periodic;
+  const int least = periodic ? 3 : 2;
+  if (cells < least || cells > kMaxExtent)
+    throw InputError("--cells must be in " + std::to_string(least) + ".." +
+                     std::to_string(kMaxExtent) + ", got " + std::to_string(cells));
+  const KeyLayout layout(d, cells);
+  if (layout.words() > CSpaceGraph::kWords)
+    throw InputError("--cells " + std::to_string(cells) + " at " + std::to_string(d) +
+                     " axes needs more than 128 bits per state; use fewer cells");
+  return layout;
+}
+
+}  // namespace
+
+CSpaceGraph::CSpaceGraph(const ConfigSpace& space, int cells, CSpaceMoves moves)
+    : space_(space),
+      dims_(space.dims()),
+      cells_(cells),
+      moves_kind_(moves),
+      layout_(checked_layout(space, cells)) {
+  for (const auto& a : space.axes()) {
+    lower_.push_back(a.lower);
+    periodic_.push_back(a.periodic);
+    step_.push_back(a.periodic ? (a.upper - a.lower) / cells : (a.upper - a.lower) / (cells - 1));
+  }
+  // Singles (axis, -/+), then pairs i < k (-/+, -/+).
+  for (int i = 0; i < dims_; ++i)
+    for (int s = -1; s <= 1; s += 2) {
+      MoveDef m;
+      m.axis[0] = i;
+      m.step[0] = s;
+      m.cost = step_[i];
+      moves_.push_back(m);
+    }
+  if (moves == CSpaceMoves::seed_pairs)
+    for (int i = 0; i < dims_; ++i)
+      for (int k = i + 1; k < dims_; ++k)
+        for (int si = -1; si <= 1; si += 2)
+          for (int sk = -1; sk <= 1; sk += 2) {
+            MoveDef m;
+            m.axis[0] = i;
+            m.axis[1] = k;
+            m.step[0] = si;
+            m.step[1] = sk;
+            m.axes = 2;
+            m.cost = std::hypot(step_[i], step_[k]);
+            moves_.push_back(m);
+          }
+}
+
+std::vector<double> CSpaceGraph::vertex(const State& s) const {
+  int c[kMaxDims];
+  layout_.unpack(s, c);
+  std::vector<double> q(dims_);
+  vertex(c, q.data());
+  return q;
+}
+
+double CSpaceGraph::distance(std::span<const double> a, std::span<const double> b) const {
+  double s = 0.0;
+  for (int i = 0; i < dims_; ++i) {
+    const double d = axis_difference(space_.axes()[i], a[i], b[i]);
+    s += d * d;
+  }
+  return std::sqrt(s);
+}
+
+std::vector<std::vector<int>> CSpaceGraph::vertices_near(std::span<const double> q,
+                                                         std::size_t limit) const {
+  // Per axis the two nearest cells (the one below and the one above the value), nearest first.
+  std::vector<std::array<int, 2>> pick(dims_);
+  for (int a = 0; a < dims_; ++a) {
+    const double u = (q[a] - lower_[a]) / step_[a];
+    int lo = static_cast<int>(std::floor(u));
+    int hi = lo + 1;
+    if (periodic_[a]) {
+      lo = ((lo % cells_) + cells_) % cells_;
+      hi = hi % cells_;
+    } else {
+      lo = std::clamp(lo, 0, cells_ - 1);
+      hi = std::clamp(hi, 0, cells_ - 1);
+    }
+    const bool lo_first = u - std::floor(u) <= 0.5;
+    pick[a] = lo_first ? std::array<int, 2>{lo, hi} : std::array<int, 2>{hi, lo};
+  }
+  // Every combination (2^d, at most `limit` of them, the nearest pick varied last), sorted by
+  // distance; duplicates (a bound clamped both picks together) dropped.
+  const int vary = std::min<int>(dims_, 20);
+  const std::uint64_t total = std::uint64_t{1} << vary;
+  std::vector<std::pair<double, std::vector<int>>> all;
+  std::vector<double> v(dims_);
+  for (std::uint64_t mask = 0; mask < total && all.size() < std::max<std::size_t>(limit, 1) * 4;
+       ++mask) {
+    std::vector<int> c(dims_);
+    for (int a = 0; a < dims_; ++a) c[a] = pick[a][a < vary && (mask >> a & 1) ? 1 : 0];
+    vertex(c.data(), v.data());
+    all.emplace_back(distance(q, v), std::move(c));
+  }
+  std::sort(all.begin(), all.end());
+  std::vector<std::vector<int>> out;
+  for (auto& [d, c] : all) {
+    if (!out.empty() && std::find(out.begin(), out.end(), c) != out.end()) continue;
+    out.push_back(std::move(c));
+    if (out.size() == limit) break;
+  }
+  return out;
+}
+
+bool CSpaceGraph::step(const int* cx, const MoveDef& m, int* out) const {
+  std::copy(cx, cx + dims_, out);
+  for (int j = 0; j < m.axes; ++j) {
+    const int a = m.axis[j];
+    int v = cx[a] + m.step[j];
+    if (periodic_[a]) {
+      if (v < 0)
+        v += cells_;
+      else if (v >= cells_)
+        v -= cells_;
+    } else if (v < 0 || v >= cells_) {
+      return false;
+    }
+    out[a] = v;
+  }
+  return true;
+}
+
+CSpaceGraph::State CSpaceGraph::predecessor(const State& t, Move m) const {
+  int ct[kMaxDims], cp[kMaxDims];
+  layout_.unpack(t, ct);
+  MoveDef back = moves_[m];
+  for (int j = 0; j < back.axes; ++j) back.step[j] = -back.step[j];
+  if (!step(ct, back, cp)) throw std::logic_error("CSpaceGraph: predecessor leaves the lattice");
+  return pack(std::span<const int>(cp, dims_));
+}
+
+double CSpaceGraph::checked_edge_length(const State& a, const State& b) const {
+  int ca[kMaxDims], cb[kMaxDims];
+  layout_.unpack(a, ca);
+  layout_.unpack(b, cb);
+  int moved = 0;
+  for (int i = 0; i < dims_; ++i) {
+    int diff = cb[i] - ca[i];
+    if (periodic_[i]) {
+      if (diff == cells_ - 1) diff = -1;
+      if (diff == -(cells_ - 1)) diff = 1;
+    }
+    if (diff < -1 || diff > 1) return -1.0;
+    moved += diff != 0;
+  }
+  if (moved == 0 || moved > (moves_kind_ == CSpaceMoves::axes ? 1 : 2)) return -1.0;
+  std::vector<double> qa(dims_), qb(dims_);
+  vertex(ca, qa.data());
+  vertex(cb, qb.data());
+  const Motion motion(space_, qa, qb);
+  std::vector<double> samples;
+  const std::size_t m = motion.samples(samples);
+  for (std::size_t i = 0; i < m; ++i) {
+    ++checks_;
+    if (!space_.is_valid(samples.data() + i * dims_)) return -1.0;
+  }
+  return motion.length();
+}
+
+void CSpaceGraph::test(const std::vector<double>& states, std::vector<std::uint8_t>& ok) const {
+  const std::size_t k = states.size() / static_cast<std::size_t>(dims_);
+  ok.resize(k);
+  if (k == 0) return;
+  space_.are_valid(states.data(), k, ok.data());
+  checks_ += k;
+  ++batches_;
+}
+
+void CSpaceGraph::check_candidates() const {
+  const std::size_t d = static_cast<std::size_t>(dims_);
+  // Ends: the cache, then one batch of the unknown ones.
+  batch_.clear();
+  pending_.clear();
+  std::vector<double> end(d);
+  for (std::size_t i = 0; i < candidates_.size(); ++i) {
+    Candidate& c = candidates_[i];
+    if (const auto it = end_valid_.find(c.state); it != end_valid_.end()) {
+      c.ok = it->second;
+      continue;
+    }
+    int ct[kMaxDims];
+    layout_.unpack(c.state, ct);
+    vertex(ct, end.data());
+    batch_.insert(batch_.end(), end.begin(), end.end());
+    pending_.push_back(i);
+  }
+  test(batch_, batch_ok_);
+  for (std::size_t j = 0; j < pending_.size(); ++j) {
+    Candidate& c = candidates_[pending_[j]];
+    c.ok = batch_ok_[j] != 0;
+    end_valid_.emplace(c.state, c.ok);
+  }
+  // Inner samples of every edge whose end passed: one batch, each edge's run of samples
+  // recorded so its verdict can be read back.
+  batch_.clear();
+  pending_.clear();
+  std::vector<std::size_t> first;  // each tested edge's first sample in the batch
+  double delta[kMaxDims];
+  const auto& axes = space_.axes();
+  for (std::size_t i = 0; i < candidates_.size(); ++i) {
+    Candidate& c = candidates_[i];
+    if (!c.ok) continue;
+    int ct[kMaxDims];
+    layout_.unpack(c.state, ct);
+    vertex(ct, end.data());
+    double len2 = 0.0;
+    for (std::size_t a = 0; a < d; ++a) {
+      delta[a] = axis_difference(axes[a], tail_[a], end[a]);
+      len2 += delta[a] * delta[a];
+    }
+    const std::size_t m = motion_steps(std::sqrt(len2), space_.resolution());
+    if (m <= 1) continue;  // the end was the only sample
+    pending_.push_back(i);
+    first.push_back(batch_.size() / d);
+    const std::size_t at = batch_.size();
+    batch_.resize(at + (m - 1) * d);
+    for (std::size_t s = 1; s < m; ++s)
+      motion_point(axes, tail_.data(), delta, static_cast<double>(s) / static_cast<double>(m),
+                   batch_.data() + at + (s - 1) * d);
+  }
+  test(batch_, batch_ok_);
+  first.push_back(batch_.size() / d);
+  for (std::size_t j = 0; j < pending_.size(); ++j) {
+    bool ok = true;
+    for (std::size_t s = first[j]; s < first[j + 1] && ok; ++s) ok = batch_ok_[s] != 0;
+    candidates_[pending_[j]].ok = ok;
+  }
+}
+
+}  // namespace hpcplan
