@@ -166,19 +166,30 @@ std::vector<double> parse_reals(const std::string& text, const char* what) {
 // --world: the space, its lattice and its query; GOG's and the maps' own options refused.
 void prepare_cspace_problem(GridArgs& a, bool dims_given) {
   if (!a.map.empty()) throw InputError("--world and --map are two worlds: give one");
+  const std::string what = a.space ? std::string("your space") : a.world;
   for (const CLI::Option* o : a.gog_options)
     if (o != nullptr && o->count() > 0)
-      throw InputError(o->get_name() + " describes the GOG field; --world plans on " + a.world +
+      throw InputError(o->get_name() + " describes the GOG field; --world plans on " + what +
                        "'s configuration space");
   if (a.connectivity_option != nullptr && a.connectivity_option->count() > 0)
     throw InputError("--connectivity is the GOG lattice's; a --world lattice takes --moves");
-  if (!dims_given)
-    throw InputError(
-        "--dims is required with --world (the chain's links, the "
-        "hypercube's dimensions)");
-  const BenchmarkSpace b = make_benchmark_space(a.world, a.problem.dims, a.resolution);
+  BenchmarkSpace b;
+  if (a.space) {
+    if (!a.world.empty()) throw InputError("world= and valid= are two spaces: give one");
+    if (dims_given && a.problem.dims != a.space->dims())
+      throw InputError("dims=" + std::to_string(a.problem.dims) + " but the space has " +
+                       std::to_string(a.space->dims()) + " axes");
+    if (a.cells <= 0 || a.start.empty() || a.goal.empty())
+      throw InputError("a space of your own needs cells=, start= and goal=");
+    b.space = a.space;
+  } else {
+    if (!dims_given)
+      throw InputError(
+          "--dims is required with --world (the chain's links, the hypercube's dimensions)");
+    b = make_benchmark_space(a.world, a.problem.dims, a.resolution);
+  }
   GridProblem p;
-  p.dims = a.problem.dims;
+  p.dims = b.space->dims();
   p.extent = a.cells > 0 ? a.cells : b.cells;
   CSpaceQuery q;
   q.space = b.space;
@@ -199,7 +210,7 @@ void prepare_grid_run(GridArgs& a, int rank, int ranks, const RunControl& contro
   if (a.weight_option != nullptr && a.weight_option->count() > 0) a.options.weight = a.weight;
   a.options.jump_points = !a.no_jump_points;
   const bool dims_given = a.dims_option != nullptr && a.dims_option->count() > 0;
-  if (!a.world.empty()) {
+  if (!a.world.empty() || a.space) {
     prepare_cspace_problem(a, dims_given);
   } else {
     if (a.cells != 0 || a.resolution != 0.0)
@@ -207,7 +218,7 @@ void prepare_grid_run(GridArgs& a, int rank, int ranks, const RunControl& contro
     if (!a.start.empty()) a.problem.start = parse_coordinates(a.start, "--start");
     if (!a.goal.empty()) a.problem.goal = parse_coordinates(a.goal, "--goal");
   }
-  if (a.world.empty() && !a.map.empty()) {
+  if (a.world.empty() && !a.space && !a.map.empty()) {
     for (const CLI::Option* o : a.gog_options)
       if (o != nullptr && o->count() > 0)
         throw InputError(o->get_name() +
@@ -222,7 +233,7 @@ void prepare_grid_run(GridArgs& a, int rank, int ranks, const RunControl& contro
     p.start = a.problem.start;
     p.goal = a.problem.goal;
     a.problem = std::move(p);
-  } else if (a.world.empty() && a.dims_option != nullptr && !dims_given) {
+  } else if (a.world.empty() && !a.space && a.dims_option != nullptr && !dims_given) {
     throw InputError("--dims is required (or --map FILE to plan on a map)");
   }
   if (!a.output.empty()) require_writable_destination(a.output, "--output");

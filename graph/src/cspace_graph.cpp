@@ -258,4 +258,20 @@ void CSpaceGraph::check_candidates() const {
   }
 }
 
+CSpaceHeuristic::CSpaceHeuristic(const CSpaceGraph& graph, const CSpaceGraph::State& goal)
+    : graph_(&graph), dims_(graph.dims()), cells_(graph.cells()) {
+  const std::vector<double> g = graph.vertex(goal);
+  squared_.resize(static_cast<std::size_t>(dims_) * cells_);
+  std::vector<int> c(dims_, 0);
+  std::vector<double> q(dims_);
+  for (int a = 0; a < dims_; ++a)
+    for (int i = 0; i < cells_; ++i) {
+      c.assign(dims_, 0);
+      c[a] = i;
+      graph.vertex(c.data(), q.data());
+      const double d = axis_difference(graph.space().axes()[a], q[a], g[a]);
+      squared_[static_cast<std::size_t>(a) * cells_ + i] = d * d;
+    }
+}
+
 }  // namespace hpcplan

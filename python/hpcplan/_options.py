@@ -133,8 +133,17 @@ class Options:
                         not hasattr(value, "__iter__"):
                     raise TypeError(f"{name} must be a sequence of numbers, not "
                                     f"{type(value).__name__}")
-                cast = (lambda v: str(_whole(name, v))) if kind != "float_list" else \
-                    (lambda v: _real(name, v))
+                def cast(v, name=name, kind=kind):
+                    if kind == "float_list":
+                        return str(_real(name, v))
+                    try:
+                        return str(_whole(name, v))
+                    except (TypeError, ValueError):
+                        # start= and goal= on a configuration space are real states; a grid
+                        # refuses them with its own message.
+                        if name in self.sequences:
+                            return str(_real(name, v))
+                        raise
                 out.append(f"{flag}=" + ",".join(cast(v) for v in value))
             else:
                 value = text(name, value)

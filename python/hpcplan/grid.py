@@ -39,18 +39,41 @@ _OCCUPANCY_DOC = """occupancy : numpy.ndarray, optional
     refused with it; connectivity is seed unless given ("full" up to 4 dimensions)."""
 
 
+_VALID = inspect.Parameter("valid", inspect.Parameter.KEYWORD_ONLY, default=None)
+_BOUNDS = inspect.Parameter("bounds", inspect.Parameter.KEYWORD_ONLY, default=None)
+_PERIODIC = inspect.Parameter("periodic", inspect.Parameter.KEYWORD_ONLY, default=None)
+_VALID_DOC = """valid : callable, optional
+    Plan on a configuration space of your own: valid(states) takes a (k, d) float64 array of
+    states and returns k booleans (True = collision-free). The lattice engines call it once per
+    batch (an expansion's successors, then the samples of their edges), holding the GIL only
+    for the call. An exception from it, or an answer of the wrong shape, raises ValueError.
+    Needs bounds=, cells=, start= and goal= (states in the space's coordinates);
+    resolution= is the motion-check step as a fraction of the bounds' diagonal (0.01).
+    The path comes back in the space's coordinates (start, lattice vertices, goal).
+bounds : sequence of (low, high), optional
+    valid='s axes.
+periodic : sequence of bool, optional
+    Which of valid='s axes wrap (angles): the lattice and every motion take the short way."""
+
+
 def solve(**kwargs):
     given = _options.bind(_SOLVE_SIGNATURE, "solve", kwargs)
     stop = given.pop("stop", None)
     occupancy = given.pop("occupancy", None)
-    report, path = _hpcplan.grid_solve(_SOLVE.tokens(given), stop, occupancy)
+    valid = given.pop("valid", None)
+    bounds = given.pop("bounds", None)
+    periodic = given.pop("periodic", None)
+    report, path = _hpcplan.grid_solve(_SOLVE.tokens(given), stop, occupancy, valid, bounds,
+                                       periodic)
     return GridResult(report, path)
 
 
 _SOLVE_SIGNATURE = _options.make(solve, _SOLVE, returns=GridResult,
-                                 trailing=(_OCCUPANCY, _options.STOP),
-                                 extra_doc=_OCCUPANCY_DOC + "\n" + _options.STOP_DOC, summary="""
-Solves one query on the GOG field, a map file (map=) or an array (occupancy=), as
+                                 trailing=(_OCCUPANCY, _VALID, _BOUNDS, _PERIODIC, _options.STOP),
+                                 extra_doc=_OCCUPANCY_DOC + "\n" + _VALID_DOC + "\n" +
+                                 _options.STOP_DOC, summary="""
+Solves one query on the GOG field, a map file (map=), an array (occupancy=), OMPL's kinematic
+chain or hypercube (world="chain", dims=8) or a space of your own (valid=fn), as
 ``hpcplan grid`` does; returns a GridResult.
 
 BFS and Dijkstra run on the dense engine where they fit (engine="auto"), A* and weighted A* on

@@ -12,6 +12,7 @@
 #include "bridge.hpp"
 #include "hpcplan/cli/grid_options.hpp"
 #include "hpcplan/core/error.hpp"
+#include "hpcplan/env/config_space.hpp"
 #include "hpcplan/env/gog.hpp"
 #include "hpcplan/env/occupancy_grid.hpp"
 #include "hpcplan/env/occupancy_io.hpp"
@@ -227,13 +228,101 @@ void refuse_gog_options(const cli::GridArgs& a) {
   if (!a.map.empty()) throw InputError("map= and occupancy= both give the obstacles; give one");
 }
 
+// A configuration space a Python caller defines by its validity function: fn takes a (k, d)
+// float64 array of states and returns k booleans. The lattice engines hand it whole batches
+// (an expansion's successor ends, then their edges' samples), so the GIL is taken once per
+// batch, only for the call. An exception from fn, or an answer of the wrong shape or type,
+// ends the search as an InputError (ValueError) with one line.
+class PythonSpace final : public ConfigSpace {
+ public:
+  PythonSpace(py::function fn, std::vector<AxisBounds> axes, double resolution_fraction)
+      : ConfigSpace("python", std::move(axes), 1.0), fn_(std::move(fn)) {
+    // The resolution is a fraction of the bounds' diagonal, as for the benchmark spaces.
+    set_resolution(resolution_fraction * maximum_extent());
+  }
+  ~PythonSpace() override {
+    py::gil_scoped_acquire gil;
+    fn_ = py::function();
+  }
+
+ protected:
+  bool valid(const double* state) const override {
+    std::uint8_t ok = 0;
+    valid_batch(state, 1, &ok);
+    return ok != 0;
+  }
+  void valid_batch(const double* states, std::size_t k, std::uint8_t* out) const override {
+    const std::size_t d = static_cast<std::size_t>(dims());
+    py::gil_scoped_acquire gil;
+    py::array_t<double> batch({k, d});
+    std::copy(states, states + k * d, batch.mutable_data());
+    py::object answer;
+    try {
+      answer = fn_(batch);
+    } catch (py::error_already_set& e) {
+      std::string what = e.what();
+      what = what.substr(0, what.find('\n'));
+      throw InputError("valid= raised " + what);
+    }
+    if (!py::isinstance<py::array>(answer))
+      answer = py::module_::import("numpy").attr("asarray")(answer);
+    const auto a = py::reinterpret_borrow<py::array>(answer);
+    const char kind = a.dtype().kind();
+    if (a.ndim() != 1 || static_cast<std::size_t>(a.shape(0)) != k ||
+        !(kind == 'b' || kind == 'i' || kind == 'u'))
+      throw InputError("valid= must return " + std::to_string(k) + " booleans for a (" +
+                       std::to_string(k) + ", " + std::to_string(d) + ") array of states, got " +
+                       py::str(a.attr("shape")).cast<std::string>() + " of " +
+                       py::str(a.dtype()).cast<std::string>());
+    const auto b = py::array_t<std::uint8_t, py::array::forcecast>::ensure(a);
+    const auto view = b.unchecked<1>();
+    for (std::size_t i = 0; i < k; ++i) out[i] = view(static_cast<py::ssize_t>(i)) != 0;
+  }
+
+ private:
+  py::function fn_;
+};
+
+// valid=, bounds= and periodic= as a space (GIL held): bounds a sequence of (low, high) pairs,
+// periodic one boolean per axis (default none).
+std::shared_ptr<const ConfigSpace> python_space(const py::object& valid, const py::object& bounds,
+                                                const py::object& periodic, double fraction) {
+  if (!PyCallable_Check(valid.ptr()))
+    throw InputError("valid= must be a function of a (k, d) array of states");
+  if (bounds.is_none()) throw InputError("valid= needs bounds=[(low, high), ...], one per axis");
+  std::vector<AxisBounds> axes;
+  for (const auto& pair : bounds) {
+    const auto lh = py::cast<std::vector<double>>(pair);
+    if (lh.size() != 2) throw InputError("bounds= must be (low, high) pairs, one per axis");
+    axes.push_back({lh[0], lh[1], false});
+  }
+  if (!periodic.is_none()) {
+    const auto flags = py::cast<std::vector<bool>>(periodic);
+    if (flags.size() != axes.size())
+      throw InputError("periodic= needs one flag per axis: " + std::to_string(axes.size()) +
+                       ", got " + std::to_string(flags.size()));
+    for (std::size_t i = 0; i < axes.size(); ++i) axes[i].periodic = flags[i];
+  }
+  return std::make_shared<PythonSpace>(py::reinterpret_borrow<py::function>(valid), std::move(axes),
+                                       fraction > 0.0 ? fraction : 0.01);
+}
+
 // One query: on the GOG field the options describe, on `on_field` (built once), or on the
 // occupancy array `array` (read in place while the GIL is released; None: not given).
 py::tuple solve(const std::vector<std::string>& tokens, const StopSource* stop,
-                const Field* on_field, const py::object& array) {
+                const Field* on_field, const py::object& array,
+                const py::object& valid = py::none(), const py::object& bounds = py::none(),
+                const py::object& periodic = py::none()) {
   auto a = std::make_shared<cli::GridArgs>(parse_cached<cli::GridArgs>(
       "hpcplan grid", tokens,
       [](CLI::App* c, cli::GridArgs& args) { cli::add_grid_options(c, args); }));
+  if (!valid.is_none()) {
+    if (!array.is_none() || on_field != nullptr)
+      throw InputError("valid= defines the space; it takes no occupancy= or Field");
+    a->space = python_space(valid, bounds, periodic, a->resolution);
+  } else if (!bounds.is_none() || !periodic.is_none()) {
+    throw InputError("bounds= and periodic= describe a space of your own: give valid= too");
+  }
   std::optional<ArrayBytes> bytes;
   if (!array.is_none()) bytes = occupancy_bytes(array);
   std::shared_ptr<const OccupancyGrid> grid =
@@ -277,8 +366,21 @@ py::tuple solve(const std::vector<std::string>& tokens, const StopSource* stop,
       },
       stop, on_ctrl_c);
   py::object path = py::none();
-  if (a->options.keep_path && answer.report.result.status == Status::solved)
-    path = path_array(answer.report.result.path, answer.report.problem.dims);
+  if (a->options.keep_path && answer.report.result.status == Status::solved) {
+    if (answer.report.cspace) {
+      // On a configuration space: the path in its coordinates (start, vertices, goal).
+      const auto& states = answer.report.cspace->path;
+      const std::size_t d = static_cast<std::size_t>(answer.report.problem.dims);
+      py::array_t<double> out({states.size(), d});
+      for (std::size_t i = 0; i < states.size(); ++i)
+        std::copy(states[i].begin(), states[i].end(), out.mutable_data() + i * d);
+      path = std::move(out);
+    } else {
+      path = path_array(answer.report.result.path, answer.report.problem.dims);
+    }
+  }
+  // The space (Python's function inside) is let go here, with the GIL held.
+  a.reset();
   return py::make_tuple(to_python(answer.json), path);
 }
 
@@ -345,8 +447,13 @@ void bind_grid(py::module_& m) {
   m.def(
       "grid_solve",
       [](const std::vector<std::string>& tokens, const StopSource* stop,
-         const py::object& occupancy) { return solve(tokens, stop, nullptr, occupancy); },
-      py::arg("tokens"), py::arg("stop") = nullptr, py::arg("occupancy") = py::none());
+         const py::object& occupancy, const py::object& valid, const py::object& bounds,
+         const py::object& periodic) {
+        return solve(tokens, stop, nullptr, occupancy, valid, bounds, periodic);
+      },
+      py::arg("tokens"), py::arg("stop") = nullptr, py::arg("occupancy") = py::none(),
+      py::arg("valid") = py::none(), py::arg("bounds") = py::none(),
+      py::arg("periodic") = py::none());
   m.def("load_map", &load_map_array, py::arg("path"), py::arg("terrain") = "ground");
   m.def("grid_distance_field", &distance_field_of, py::arg("tokens"), py::arg("stop") = nullptr,
         py::arg("occupancy") = py::none());

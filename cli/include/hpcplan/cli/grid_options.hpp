@@ -35,6 +35,9 @@ struct GridArgs {
   int cells = 0;  // 0: the space's default
   std::string moves = "pairs";
   double resolution = 0.0;  // 0: the space's default fraction of its extent
+  // Set by a front end that defines its own space (Python's valid=fn): planned on like a
+  // --world, with --cells, --start and --goal required.
+  std::shared_ptr<const ConfigSpace> space;
   double weight = 2.0;
   bool no_jump_points = false;
   const CLI::Option* weight_option = nullptr;  // given or not (only weighted A* takes one)

@@ -70,6 +70,10 @@ class ConfigSpace {
   // resolution is not positive.
   ConfigSpace(std::string name, std::vector<AxisBounds> axes, double resolution);
 
+  // For a space whose resolution depends on what the base computes (a fraction of
+  // maximum_extent()): InputError if not positive.
+  void set_resolution(double resolution);
+
   virtual bool valid(const double* state) const = 0;
   virtual void valid_batch(const double* states, std::size_t k, std::uint8_t* out) const;
 
