@@ -8,7 +8,7 @@ import json
 import sys
 
 rows = [json.loads(line) for line in sys.stdin if line.strip()]
-header = (f"{'d':>3} {'extent':>6} {'algo':>8} {'ranks':>5} {'scheme':>10} {'status':>9} {'cost':>9} {'quality':>7} "
+header = (f"{'world':>17} {'d':>3} {'extent':>6} {'algo':>8} {'ranks':>5} {'scheme':>10} {'status':>9} {'cost':>9} {'quality':>7} "
           f"{'expanded':>9} {'time ms':>8} {'dev %':>6} {'msgs':>6} {'serial':>9} {'overhead':>8} {'speedup':>7}")
 print(header)
 print("-" * len(header))
@@ -22,7 +22,8 @@ for r in rows:
     serial = f"{ref['cost']:.3f}" if ref and ref["cost"] is not None else "-"
     overhead = f"{ref['search_overhead']:.3f}" if ref and ref["search_overhead"] is not None else "-"
     speedup = f"{ref['speedup']:.2f}x" if ref and ref["speedup"] is not None else "-"
-    print(f"{r['dims']:>3} {r['extent']:>6} {r['algo']:>8} {r['ranks']:>5} {r['scheme']:>10} {r['status']:>9} {cost:>9} "
+    world = r.get("world", r.get("obstacles", "gog"))
+    print(f"{world:>17} {r['dims']:>3} {r['extent']:>6} {r['algo']:>8} {r['ranks']:>5} {r['scheme']:>10} {r['status']:>9} {cost:>9} "
           f"{quality:>7} {r['expanded']:>9} {r['time_ms']:>8.2f} {dev:>6} {msgs:>6} {serial:>9} "
           f"{overhead:>8} {speedup:>7}")
 if any(r.get("serial_reference") for r in rows):
@@ -36,7 +37,8 @@ if any(r.get("serial_reference") for r in rows):
            and r["serial_reference"].get("time_ms", 0) >= 300]
     for r in big:
         ref = r["serial_reference"]
-        print(f"{r['dims']}D extent {r['extent']} {r['algo']} ({ref['time_ms']:.0f} ms serially): "
+        where = r.get("world", r.get("obstacles", "gog"))
+        print(f"{where} {r['dims']}D extent {r['extent']} {r['algo']} ({ref['time_ms']:.0f} ms serially): "
               f"{ref['speedup']:.2f}x on {r['ranks']} ranks ({r['scheme']}), workload deviation "
               f"{r['distributed']['workload_deviation_percent']:.1f}%.")
     if big:

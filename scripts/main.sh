@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The main job: install, build, and solve seed 002's default problems for d = 2..10 on two MPI
 # ranks (hash-distributed A*), each checked against the serial engine in the same job, plus
-# a small BFS and two searches large enough for the ranks to pay (the dense engine's BFS and
-# Dijkstra); prints one table.
+# a small BFS, two searches large enough for the ranks to pay (the dense engine's BFS and
+# Dijkstra) and A* on OMPL's kinematic chain; prints one table.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -24,4 +24,9 @@ echo "hpcplan: grid search on the GOG field over 2 MPI ranks (mpirun -np 2), sta
     --compare-serial --json
   mpirun -np 2 --oversubscribe build/bin/hpcplan grid --dims 4 --extent 60 --algo dijkstra \
     --compare-serial --json
+  # OMPL's kinematic chain (7 links in the horn, 28 joint cells per axis): A* on the joint-space
+  # lattice, where every successor costs a batch of segment tests (docs/CSPACE.md); the ranks
+  # share the checks and the states.
+  mpirun -np 2 --oversubscribe build/bin/hpcplan grid --world chain --dims 7 --compare-serial \
+    --json
 } | python3 scripts/grid_table.py

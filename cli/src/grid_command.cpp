@@ -119,6 +119,18 @@ Action register_grid_command(CLI::App& app) {
       dist.fault_kill = std::string_view(name) == "HPCPLAN_FAULT_KILL";
     }
     distributed::validate(dist, a.problem.extent, ranks, a.problem.dims);
+    if (a.problem.cspace) {
+      if (dist.slab_width > 0 || !dist.prefix_cuts.empty())
+        throw InputError(
+            "--owner-slabs and --owner-cuts cut GOG and map lattices; a --world space's states "
+            "are owned by their hash (--owner-coarsen k keeps 2^k-wide cells together)");
+      if (!a.field_out.empty())
+        throw InputError("--field-out writes a GOG or map lattice's field; not a --world space's");
+      if (!args->simulate_ranks.empty())
+        throw InputError(
+            "--simulate-ranks predicts GOG and map lattices; run a --world space "
+            "under mpirun instead");
+    }
 
     if (!a.field_out.empty()) {
       if (!args->simulate_ranks.empty())
