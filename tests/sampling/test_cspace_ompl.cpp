@@ -299,6 +299,33 @@ TEST_P(GridInOmpl, ReturnsSolveGridsCost) {
 
 INSTANTIATE_TEST_SUITE_P(ChainAndHypercube, GridInOmpl, ::testing::Values("chain", "hypercube"));
 
+// The smoothed path of the 12-link chain on a 12-cell lattice: OMPL's shortcuts keep pieces of
+// lattice motions whose own samples can fail (every few runs here); the planner must never
+// return such a path, nor one longer than the lattice's.
+TEST(GridInOmpl, SmoothedChainPathsReCheckValidAndNoLonger) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
+  const BenchmarkSpace b = make_benchmark_space("chain", 12);
+  const CSpaceOmpl s = make_cspace_ompl(b.space);
+  og::SimpleSetup setup(s.si);
+  ob::ScopedState<> start(s.state_space), goal(s.state_space);
+  set(start, b.start);
+  set(goal, b.goal);
+  setup.setStartAndGoalStates(start, goal, 1e-6);
+  auto planner = std::make_shared<plan::CSpaceGridPlanner>(s, 12);
+  planner->setSmoothing(true);
+  setup.setPlanner(planner);
+  for (int run = 0; run < 6; ++run) {
+    setup.clear();
+    ASSERT_EQ(setup.solve(60.0), ob::PlannerStatus::EXACT_SOLUTION);
+    const og::PathGeometric& path = setup.getSolutionPath();
+    EXPECT_LE(path.length(), planner->lastReport().result.cost + 1e-9) << "run " << run;
+    std::vector<State> points;
+    for (std::size_t i = 0; i < path.getStateCount(); ++i)
+      points.push_back(values(path.getState(i), 12));
+    EXPECT_EQ(first_invalid_motion(*b.space, points), -1) << "run " << run;
+  }
+}
+
 TEST(CSpaceOmplBenchmark, BadOptionsAreInputErrors) {
   plan::OmplBenchOptions o;
   o.world = "chain";

@@ -10,7 +10,8 @@
 //    ConfigSpace::are_valid), the counter OMPL's planners bump through the adapter;
 //  - with `smoothing` on, the lattice path is then shortened by OMPL's PathSimplifier through
 //    the space information's motion validator, within a budget of `smoothing_budget` times the
-//    search's own time (0: until it converges).
+//    search's own time (0: until it converges); a smoothed path any of whose motions fails the
+//    motion validator afterwards (or that is no shorter) gives way to the lattice path.
 // Parameters (declared, so Benchmark logs them): cells (per axis), moves (axes | seed_pairs),
 // weight (1 = A*), smoothing (0/1), smoothing_budget, time_limit (s, 0 = none). OMPL's
 // termination condition ends the search (stop_when) and the smoothing.
@@ -50,6 +51,9 @@ class CSpaceGridPlanner : public ompl::base::Planner {
   const GridReport& lastReport() const { return last_; }
   // Seconds the last solve spent smoothing (0 without smoothing).
   double lastSmoothingSeconds() const { return last_smoothing_s_; }
+  // Whether the last solve's smoothed path failed the motion re-check (or was no shorter) and
+  // the lattice path was returned instead.
+  bool lastSmoothingReverted() const { return last_smoothing_reverted_; }
 
  private:
   sampling::CSpaceOmpl space_;
@@ -62,6 +66,7 @@ class CSpaceGridPlanner : public ompl::base::Planner {
   std::uint64_t max_states_ = 0;  // the search's state budget, set at the first solve
   GridReport last_;
   double last_smoothing_s_ = 0.0;
+  bool last_smoothing_reverted_ = false;
 };
 
 }  // namespace hpcplan::plan
