@@ -25,8 +25,8 @@ for n in $links; do
 import json, sys
 j = json.load(sys.stdin)
 s = j["serial_reference"]
-print(f"{s[\"time_ms\"]:.1f} {j[\"time_ms\"]:.1f} {s[\"speedup\"]:.3f} {s[\"search_overhead\"]:.3f} "
-      f"{s[\"cost\"]:.6f} {j[\"cost\"]:.6f}")')
+print("%.1f %.1f %.3f %.3f %.6f %.6f" % (s["time_ms"], j["time_ms"], s["speedup"],
+                                        s["search_overhead"], s["cost"], j["cost"]))')
     read -r sms pms sp ov sc pc <<<"$line"
     printf '%5s %5s %10s %10s %8s %9s %10s %10s\n' "$n" "$r" "$sms" "$pms" "${sp}x" "$ov" "$sc" "$pc"
     [[ $sc == "$pc" ]] || { echo "cspace_ranks: costs differ ($sc vs $pc)" >&2; exit 1; }

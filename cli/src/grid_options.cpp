@@ -42,6 +42,10 @@ void add_grid_options(CLI::App* cmd, GridArgs& a) {
              "benchmark's: 0.01 chain, 0.001 hypercube)",
              0, 1)
       ->capture_default_str();
+  cmd->add_option("--checks", a.checks,
+                  "--world: how the lattice tests states, batch (an expansion's successors, then "
+                  "their edges' samples, at once) | single (one at a time; the same answers)")
+      ->capture_default_str();
   cmd->add_option("--algo", a.algo,
                   "Planner (hpcplan planners --world grid): " + planner_names("grid"))
       ->capture_default_str();
@@ -194,6 +198,9 @@ void prepare_cspace_problem(GridArgs& a, bool dims_given) {
   CSpaceQuery q;
   q.space = b.space;
   q.moves = parse_cspace_moves(a.moves);
+  if (a.checks != "batch" && a.checks != "single")
+    throw InputError("unknown --checks '" + a.checks + "' (expected batch or single)");
+  q.batch_checks = a.checks == "batch";
   q.start = a.start.empty() ? b.start : parse_reals(a.start, "--start");
   q.goal = a.goal.empty() ? b.goal : parse_reals(a.goal, "--goal");
   p.cspace = std::move(q);
@@ -213,8 +220,9 @@ void prepare_grid_run(GridArgs& a, int rank, int ranks, const RunControl& contro
   if (!a.world.empty() || a.space) {
     prepare_cspace_problem(a, dims_given);
   } else {
-    if (a.cells != 0 || a.resolution != 0.0)
-      throw InputError("--cells and --resolution describe a --world's lattice; give --world");
+    if (a.cells != 0 || a.resolution != 0.0 || a.checks != "batch")
+      throw InputError(
+          "--cells, --resolution and --checks describe a --world's lattice; give --world");
     if (!a.start.empty()) a.problem.start = parse_coordinates(a.start, "--start");
     if (!a.goal.empty()) a.problem.goal = parse_coordinates(a.goal, "--goal");
   }

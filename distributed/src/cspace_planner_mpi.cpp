@@ -23,7 +23,8 @@ GridReport solve_cspace_distributed(const GridProblem& problem, const GridSearch
         "--owner-slabs and --owner-cuts cut GOG and map lattices; a configuration space's states "
         "are owned by their hash (--owner-coarsen k keeps 2^k-wide cells together)");
   Stopwatch setup;
-  const CSpaceGraph graph(*problem.cspace->space, problem.extent, problem.cspace->moves);
+  CSpaceGraph graph(*problem.cspace->space, problem.extent, problem.cspace->moves);
+  graph.set_batch_checks(problem.cspace->batch_checks);
   CSpaceRun run;
   const bool joined = begin_cspace_run(problem, options, graph, comm.ranks_on_node(), run);
   GridReport& report = run.report;

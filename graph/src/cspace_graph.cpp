@@ -192,8 +192,12 @@ void CSpaceGraph::test(const std::vector<double>& states, std::vector<std::uint8
   const std::size_t k = states.size() / static_cast<std::size_t>(dims_);
   ok.resize(k);
   if (k == 0) return;
-  space_.are_valid(states.data(), k, ok.data());
   checks_ += k;
+  if (!batch_checks_) {  // one state at a time: the baseline the batches are measured against
+    for (std::size_t i = 0; i < k; ++i) ok[i] = space_.is_valid(states.data() + i * dims_);
+    return;
+  }
+  space_.are_valid(states.data(), k, ok.data());
   ++batches_;
 }
 

@@ -201,7 +201,8 @@ void finish_cspace_run(const search::Result<CSpaceGraph::State>& r, const CSpace
 GridReport solve_cspace(const GridProblem& problem, const GridSearchOptions& options) {
   validate_cspace(problem, options);
   Stopwatch setup;
-  const CSpaceGraph graph(*problem.cspace->space, problem.extent, problem.cspace->moves);
+  CSpaceGraph graph(*problem.cspace->space, problem.extent, problem.cspace->moves);
+  graph.set_batch_checks(problem.cspace->batch_checks);
   CSpaceRun run;
   if (!begin_cspace_run(problem, options, graph, 1, run)) {
     run.report.result.setup_ms = setup.milliseconds();

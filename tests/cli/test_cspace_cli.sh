@@ -88,6 +88,8 @@ expect 2 "--connectivity is the GOG lattice's" grid --world chain --dims 3 --con
 expect 2 "--engine dense plans on GOG" grid --world chain --dims 3 --engine dense
 expect 2 "unknown --moves" grid --world chain --dims 3 --moves diagonal
 expect 2 "give --world" grid --dims 3 --cells 10
+expect 2 "unknown --checks" grid --world chain --dims 3 --checks simd
+expect 2 "give --world" grid --dims 3 --checks single
 expect 2 "--owner-slabs and --owner-cuts" grid --world chain --dims 3 --owner-slabs 2
 expect 2 "--field-out writes a GOG or map" grid --world chain --dims 3 --algo bfs --field-out "$tmp/f.npy"
 expect 2 "--simulate-ranks predicts GOG" grid --world chain --dims 3 --simulate-ranks 2

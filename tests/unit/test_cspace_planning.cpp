@@ -261,3 +261,28 @@ TEST(CSpacePlanning, ChecksGoInBatches) {
 
 }  // namespace
 }  // namespace hpcplan
+
+namespace hpcplan {
+namespace {
+
+// The batches change how states are tested, never which or with what answer: the same search,
+// state for state, as one-at-a-time checks.
+TEST(CSpacePlanning, BatchAndSingleChecksGiveTheSameSearch) {
+  for (const char* world : {"chain", "hypercube"}) {
+    const BenchmarkSpace b = make_benchmark_space(world, 5);
+    GridProblem p = cspace_problem(b, b.cells, CSpaceMoves::seed_pairs);
+    const GridReport batch = solve(p, GridAlgorithm::astar);
+    p.cspace->batch_checks = false;
+    const GridReport single = solve(p, GridAlgorithm::astar);
+    ASSERT_EQ(batch.result.status, Status::solved);
+    EXPECT_EQ(batch.result.cost, single.result.cost);
+    EXPECT_EQ(batch.result.counters.expanded, single.result.counters.expanded);
+    EXPECT_EQ(batch.result.counters.collision_checks, single.result.counters.collision_checks);
+    EXPECT_EQ(batch.cspace->path, single.cspace->path);
+    EXPECT_GT(batch.cspace->batches, 0u);
+    EXPECT_EQ(single.cspace->batches, 0u);
+  }
+}
+
+}  // namespace
+}  // namespace hpcplan

@@ -34,6 +34,7 @@ struct GridArgs {
   std::string world;
   int cells = 0;  // 0: the space's default
   std::string moves = "pairs";
+  std::string checks = "batch";  // batch | single (one state at a time)
   double resolution = 0.0;  // 0: the space's default fraction of its extent
   // Set by a front end that defines its own space (Python's valid=fn): planned on like a
   // --world, with --cells, --start and --goal required.

@@ -232,18 +232,30 @@ class DistributedSearch {
     }
     const auto x_cell = cell_of(x);
     // (Forced inline, as the serial engine's: GCC kept it a call per successor.)
-    graph_.for_each_successor(
-        x, [&](const State& t, const Cost& cost, Move m) __attribute__((always_inline)) {
-          ++generated;
-          if (stop) return;
-          const Cost gt = gx + cost;
-          // x is owned here, so a neighbour in x's ownership cell is too: no hash needed.
-          const int o = same_cell(x_cell, t) ? rank_ : owner_(t);
-          if (o == rank_)
-            stop = !accept(t, gt, m);
-          else if (sent_.admit(t, cost_value(gt)))
-            route(o, Record{t, gt, m});
-        });
+    auto emit = [&](const State& t, const Cost& cost, Move m) __attribute__((always_inline)) {
+      ++generated;
+      if (stop) return;
+      const Cost gt = gx + cost;
+      // x is owned here, so a neighbour in x's ownership cell is too: no hash needed.
+      const int o = same_cell(x_cell, t) ? rank_ : owner_(t);
+      if (o == rank_)
+        stop = !accept(t, gt, m);
+      else if (sent_.admit(t, cost_value(gt)))
+        route(o, Record{t, gt, m});
+    };
+    if constexpr (search::FiltersSuccessors<G>) {
+      // A graph whose successors cost collision checks (a configuration space's) first asks
+      // whether each could change anything: a state owned here that the store would not
+      // improve, or one already sent at no higher cost, is not tested at all. (Without this
+      // the ranks tested 8.5 times the serial engine's states on the 7-link chain.)
+      graph_.for_each_successor(x, emit, [&](const State& t, const Cost& cost) {
+        const Cost gt = gx + cost;
+        const int o = same_cell(x_cell, t) ? rank_ : owner_(t);
+        return o == rank_ ? store_.could_improve(t, gt) : sent_.would_admit(t, cost_value(gt));
+      });
+    } else {
+      graph_.for_each_successor(x, emit);
+    }
     generated_ += generated;
   }
 

@@ -30,6 +30,13 @@ class SentFilter {
     slot = Slot{s, g, true};
     return true;
   }
+  // Whether admit() would let the record through, recording nothing: a graph whose successors
+  // cost collision checks asks it before testing one bound for another rank.
+  bool would_admit(const State& s, double g) const {
+    if (slots_.empty()) return true;
+    const Slot& slot = slots_[Hash{}(s)&mask_];
+    return !(slot.used && slot.state == s && (any_cost_ || slot.g <= g));
+  }
   std::uint64_t dropped() const { return dropped_; }
 
  private:

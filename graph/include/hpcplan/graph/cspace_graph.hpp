@@ -62,6 +62,10 @@ class CSpaceGraph {
   std::size_t max_successors() const { return moves_.size(); }
   std::uint64_t collision_checks() const { return checks_; }
   std::uint64_t batches() const { return batches_; }
+  // false: every state tested one at a time with the space's scalar test (the same answers;
+  // the baseline that shows what the batches buy, --checks single).
+  void set_batch_checks(bool on) { batch_checks_ = on; }
+  bool batch_checks() const { return batch_checks_; }
 
   State pack(std::span<const int> coords) const { return layout_.pack<kWords>(coords); }
   std::vector<int> unpack(const State& s) const {
@@ -153,6 +157,7 @@ class CSpaceGraph {
   mutable absl::flat_hash_map<State, bool, Hash> end_valid_;
   mutable std::uint64_t checks_ = 0;
   mutable std::uint64_t batches_ = 0;
+  bool batch_checks_ = true;
 };
 
 // The admissible, consistent heuristic of the c-space lattice: the Euclidean distance to the

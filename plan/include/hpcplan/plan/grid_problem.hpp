@@ -43,6 +43,7 @@ struct CSpaceQuery {
   std::shared_ptr<const ConfigSpace> space;
   CSpaceMoves moves = CSpaceMoves::seed_pairs;
   std::vector<double> start, goal;
+  bool batch_checks = true;  // false: one state at a time (the baseline; same answers)
 };
 
 struct GridProblem {
