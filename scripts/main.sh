@@ -27,6 +27,6 @@ echo "hpcplan: grid search on the GOG field over 2 MPI ranks (mpirun -np 2), sta
   # OMPL's kinematic chain (7 links in the horn, 28 joint cells per axis): A* on the joint-space
   # lattice, where every successor costs a batch of segment tests (docs/CSPACE.md); the ranks
   # share the checks and the states.
-  mpirun -np 2 --oversubscribe build/bin/hpcplan grid --world chain --dims 7 --compare-serial \
-    --json
+  mpirun -np 2 --oversubscribe build/bin/hpcplan grid --world chain --dims 7 --cells 28 \
+    --compare-serial --json
 } | python3 scripts/grid_table.py

@@ -30,8 +30,8 @@ void add_grid_options(CLI::App* cmd, GridArgs& a) {
                   "along the cube's edges); --start/--goal are then states in its coordinates "
                   "(radians, [0,1]), default the benchmark's query");
   add_number(cmd, "--cells", a.cells,
-             "--world: lattice vertices per axis (0 = the space's default: 4 x links for the "
-             "chain, 11 for the hypercube)",
+             "--world: lattice vertices per axis (0 = the space's default: for the chain 4 x links "
+             "up to 6 links, 16 up to 8, 12 beyond; 11 for the hypercube)",
              0, 65535)
       ->capture_default_str();
   cmd->add_option("--moves", a.moves,

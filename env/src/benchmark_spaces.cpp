@@ -33,9 +33,11 @@ BenchmarkSpace make_benchmark_space(std::string_view name, int dims, double frac
     auto chain = std::make_shared<KinematicChain>(dims, fraction > 0.0 ? fraction : 0.01);
     b.start = chain->start();
     b.goal = chain->goal();
-    // Joint steps of pi/(2n): the start's angles pi/n are vertices, and the horn's opening
-    // (ln(n)/n wide) is crossed by a few cells.
-    b.cells = 4 * dims;
+    // Up to 6 links, joint steps of pi/(2n): the start's angles pi/n are vertices. Beyond, the
+    // (4n)^n lattice outgrows A* (8 links at 32 cells did not finish in 10 s on the 2-core VM),
+    // and coarser ones still thread the horn: 16 cells to 8 links (0.38 s at 8), 12 beyond
+    // (16 links in 7.6 s; 16 cells there leave the start joined to no vertex). docs/CSPACE.md.
+    b.cells = dims <= 6 ? 4 * dims : dims <= 8 ? 16 : 12;
     b.space = std::move(chain);
   } else {
     auto cube = std::make_shared<Hypercube>(dims, 0.1, fraction > 0.0 ? fraction : 0.001);

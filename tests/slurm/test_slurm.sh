@@ -96,6 +96,17 @@ jid=$(DIMS_LIST="2 3" submit dims dimension_sweep.sbatch --ntasks 2 --array 0-1)
 [[ -f $work/results/dims/${jid}_0/result.json && -f $work/results/dims/${jid}_1/result.json ]] ||
   fail "dimension-sweep results missing"
 
+# 6b. The kinematic chain's ranks (issue 48), strong and weak, 2 points each: every row's cost
+# equals the serial engine's (the job fails otherwise), the weak study adds a link per doubling.
+jid=$(P_LIST="1 2" LINKS=4 REPEATS=1 submit cspace cspace_scaling.sbatch --ntasks 2) ||
+  fail "c-space strong job failed"
+[[ $(tail -n +2 "$work/results/cspace_strong/$jid/scaling.csv" | wc -l) -eq 2 ]] ||
+  fail "c-space strong CSV incomplete"
+jid=$(STUDY=weak P_LIST="1 2" LINKS=4 REPEATS=1 submit cspace cspace_scaling.sbatch --ntasks 2) ||
+  fail "c-space weak job failed"
+[[ $(cut -d, -f2 "$work/results/cspace_weak/$jid/scaling.csv" | tail -n +2 | tr '\n' ' ') == "4 5 " ]] ||
+  fail "c-space weak study did not add a link per doubling"
+
 # 7. Aggregation over all of it: strong speedup rows for P = 1, 2, weak, Table IV.
 python3 "$root/scripts/scaling_report.py" "$work/results" > "$work/report.md" ||
   fail "scaling_report failed"
