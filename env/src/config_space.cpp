@@ -2,11 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "hpcplan/core/error.hpp"
 
 namespace hpcplan {
+namespace {
+
+std::string shortest(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+}  // namespace
 
 ConfigSpace::ConfigSpace(std::string name, std::vector<AxisBounds> axes, double resolution)
     : name_(std::move(name)), axes_(std::move(axes)), resolution_(resolution) {
@@ -17,13 +27,23 @@ ConfigSpace::ConfigSpace(std::string name, std::vector<AxisBounds> axes, double 
       throw InputError(name_ + ": axis " + std::to_string(a) +
                        " needs finite bounds with lower < upper");
   }
-  if (!(resolution_ > 0.0) || !std::isfinite(resolution_))
-    throw InputError(name_ + ": the motion-check resolution must be positive");
+  const double extent = maximum_extent();
+  if (!std::isfinite(extent) || !(extent > 0.0))
+    throw InputError(name_ + ": the bounds' diagonal is not a finite positive length");
+  set_resolution(resolution);
 }
 
 void ConfigSpace::set_resolution(double resolution) {
   if (!(resolution > 0.0) || !std::isfinite(resolution))
     throw InputError(name_ + ": the motion-check resolution must be positive");
+  // A motion across the whole space is sampled at most kMaxMotionSamples times: finer steps
+  // would make single motions (and one expansion's batch) run for minutes and past memory, and
+  // a step count past 2^64 would be no count at all.
+  if (!(maximum_extent() / resolution <= kMaxMotionSamples))
+    throw InputError(name_ + ": the motion-check step " + shortest(resolution) +
+                     " would need more than " +
+                     std::to_string(static_cast<long long>(kMaxMotionSamples)) +
+                     " samples across the space (a resolution fraction of at least 1e-7)");
   resolution_ = resolution;
 }
 
@@ -79,7 +99,13 @@ Motion::Motion(const ConfigSpace& space, std::span<const double> from, std::span
 }
 
 std::size_t motion_steps(double length, double resolution) {
-  return std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(length / resolution - 1e-12)));
+  const double steps = std::ceil(length / resolution - 1e-12);
+  // Motions inside a space are at most kMaxMotionSamples steps (set_resolution); a longer one
+  // (a length from outside the bounds) is an error, not a conversion past size_t's range.
+  if (!(steps <= 4.0 * kMaxMotionSamples))
+    throw RunError("a motion of length " + std::to_string(length) + " needs " +
+                   std::to_string(steps) + " samples at step " + std::to_string(resolution));
+  return std::max<std::size_t>(1, static_cast<std::size_t>(steps));
 }
 
 void motion_point(const std::vector<AxisBounds>& axes, const double* from, const double* delta,

@@ -47,6 +47,7 @@ CSpaceGraph::CSpaceGraph(const ConfigSpace& space, int cells, CSpaceMoves moves)
       layout_(checked_layout(space, cells)) {
   for (const auto& a : space.axes()) {
     lower_.push_back(a.lower);
+    upper_.push_back(a.upper);
     periodic_.push_back(a.periodic);
     step_.push_back(a.periodic ? (a.upper - a.lower) / cells : (a.upper - a.lower) / (cells - 1));
   }
@@ -94,39 +95,48 @@ double CSpaceGraph::distance(std::span<const double> a, std::span<const double> 
 
 std::vector<std::vector<int>> CSpaceGraph::vertices_near(std::span<const double> q,
                                                          std::size_t limit) const {
-  // Per axis the two nearest cells (the one below and the one above the value), nearest first.
+  // Per axis the two nearest cells (the one below and the one above the value; on a bounded
+  // axis's last cell, the one below it), nearest first, and what taking the second costs.
   std::vector<std::array<int, 2>> pick(dims_);
+  std::vector<double> extra(dims_, 0.0);
+  std::vector<double> v(dims_);
   for (int a = 0; a < dims_; ++a) {
     const double u = (q[a] - lower_[a]) / step_[a];
     int lo = static_cast<int>(std::floor(u));
     int hi = lo + 1;
     if (periodic_[a]) {
       lo = ((lo % cells_) + cells_) % cells_;
-      hi = hi % cells_;
+      hi = ((hi % cells_) + cells_) % cells_;
     } else {
       lo = std::clamp(lo, 0, cells_ - 1);
       hi = std::clamp(hi, 0, cells_ - 1);
+      if (lo == hi) lo = hi > 0 ? hi - 1 : 1;  // on a face: the cell's other side
     }
-    const bool lo_first = u - std::floor(u) <= 0.5;
-    pick[a] = lo_first ? std::array<int, 2>{lo, hi} : std::array<int, 2>{hi, lo};
+    const double dlo = std::abs(axis_difference(space_.axes()[a], q[a], coordinate(a, lo)));
+    const double dhi = std::abs(axis_difference(space_.axes()[a], q[a], coordinate(a, hi)));
+    pick[a] = dlo <= dhi ? std::array<int, 2>{lo, hi} : std::array<int, 2>{hi, lo};
+    extra[a] = std::abs(dlo * dlo - dhi * dhi);
   }
-  // Every combination (2^d, at most `limit` of them, the nearest pick varied last), sorted by
-  // distance; duplicates (a bound clamped both picks together) dropped.
-  const int vary = std::min<int>(dims_, 20);
-  const std::uint64_t total = std::uint64_t{1} << vary;
+  // The corners of the cell in order of distance: only the axes whose second pick costs least
+  // are varied (at most 10 of them, 1024 corners), so in any dimension the candidates are the
+  // nearest corners, not the first ones of an axis order.
+  std::vector<int> axes(dims_);
+  std::iota(axes.begin(), axes.end(), 0);
+  std::stable_sort(axes.begin(), axes.end(), [&](int x, int y) { return extra[x] < extra[y]; });
+  const int vary = std::min(dims_, 10);
   std::vector<std::pair<double, std::vector<int>>> all;
-  std::vector<double> v(dims_);
-  for (std::uint64_t mask = 0; mask < total && all.size() < std::max<std::size_t>(limit, 1) * 4;
-       ++mask) {
+  for (std::uint32_t mask = 0; mask < (1u << vary); ++mask) {
     std::vector<int> c(dims_);
-    for (int a = 0; a < dims_; ++a) c[a] = pick[a][a < vary && (mask >> a & 1) ? 1 : 0];
+    for (int a = 0; a < dims_; ++a) c[a] = pick[a][0];
+    for (int j = 0; j < vary; ++j)
+      if (mask >> j & 1) c[axes[j]] = pick[axes[j]][1];
     vertex(c.data(), v.data());
     all.emplace_back(distance(q, v), std::move(c));
   }
   std::sort(all.begin(), all.end());
   std::vector<std::vector<int>> out;
   for (auto& [d, c] : all) {
-    if (!out.empty() && std::find(out.begin(), out.end(), c) != out.end()) continue;
+    if (std::find(out.begin(), out.end(), c) != out.end()) continue;
     out.push_back(std::move(c));
     if (out.size() == limit) break;
   }

@@ -1,5 +1,6 @@
 #include "hpcplan/plan/cspace_planner.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <string>
 
@@ -12,15 +13,29 @@
 namespace hpcplan {
 namespace {
 
+// The values as typed back: the shortest text that reads back to each double, so a refusal
+// quotes the very value at fault (1.0000001, not 1).
 std::string join(const std::vector<double>& q) {
   std::string s;
   for (std::size_t i = 0; i < q.size(); ++i) {
     if (i) s += ',';
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6g", q[i]);
-    s += buf;
+    const auto r = std::to_chars(buf, buf + sizeof buf, q[i]);
+    s.append(buf, r.ptr);
   }
   return s;
+}
+
+// A periodic value wrapped into [lower, upper).
+std::vector<double> wrapped(const ConfigSpace& space, std::vector<double> q) {
+  for (int a = 0; a < space.dims(); ++a) {
+    const auto& ax = space.axes()[a];
+    if (!ax.periodic) continue;
+    const double period = ax.upper - ax.lower;
+    q[a] = ax.lower + std::fmod(std::fmod(q[a] - ax.lower, period) + period, period);
+    if (q[a] >= ax.upper) q[a] = ax.lower;
+  }
+  return q;
 }
 
 void check_end(const ConfigSpace& space, const std::vector<double>& q, const char* what) {
@@ -36,21 +51,12 @@ void check_end(const ConfigSpace& space, const std::vector<double>& q, const cha
       throw InputError(std::string("--") + what + " (" + join(q) +
                        ") is outside the bounds on axis " + std::to_string(a));
   }
-  if (!space.is_valid(q.data()))
+  // Tested as planned from: wrapped into the bounds (an angle of 1e300 is some angle in
+  // [-pi, pi), and the chain's trigonometry is exact only there).
+  const std::vector<double> w = wrapped(space, q);
+  if (!space.is_valid(w.data()))
     throw InputError(std::string("--") + what + " (" + join(q) + ") is in collision in " +
                      space.name());
-}
-
-// A periodic value wrapped into [lower, upper).
-std::vector<double> wrapped(const ConfigSpace& space, std::vector<double> q) {
-  for (int a = 0; a < space.dims(); ++a) {
-    const auto& ax = space.axes()[a];
-    if (!ax.periodic) continue;
-    const double period = ax.upper - ax.lower;
-    q[a] = ax.lower + std::fmod(std::fmod(q[a] - ax.lower, period) + period, period);
-    if (q[a] >= ax.upper) q[a] = ax.lower;
-  }
-  return q;
 }
 
 // The nearest vertex the end joins by a valid motion (end -> vertex for the start, vertex -> end
@@ -60,7 +66,10 @@ bool join_lattice(const CSpaceGraph& graph, const std::vector<double>& end, bool
   vertex_q.resize(graph.dims());
   for (auto& c : graph.vertices_near(end, kCSpaceEndCandidates)) {
     graph.vertex(c.data(), vertex_q.data());
-    const double d = graph.distance(end, vertex_q);
+    double d = graph.distance(end, vertex_q);
+    // An end within round-off of a vertex is that vertex (the chain's start angles pi/n, read
+    // back as decimals): no motion of 1e-15 and no extra hop.
+    if (d <= 1e-12 * (1.0 + graph.space().maximum_extent())) d = 0.0;
     const bool ok = d == 0.0 || (is_goal ? motion_valid(graph.space(), vertex_q, end)
                                          : motion_valid(graph.space(), end, vertex_q));
     if (ok && graph.space().is_valid(vertex_q.data())) {
@@ -134,6 +143,16 @@ bool begin_cspace_run(const GridProblem& problem, const GridSearchOptions& optio
   cs.goal = wrapped(space, problem.cspace->goal);
   pr.straight_line = graph.distance(cs.start, cs.goal);
 
+  // Start and goal the same state: the answer is that state, at no cost (joining a vertex and
+  // coming back would report a round trip).
+  if (graph.distance(cs.start, cs.goal) == 0.0) {
+    report.result.status = search::Status::solved;
+    report.result.cost = 0.0;
+    report.result.hops = 0;
+    cs.path_rechecked = true;  // its one state was tested in validate_cspace
+    if (run.keep_path) cs.path = {cs.start};
+    return false;
+  }
   std::vector<int> sv, gv;
   const bool start_joined =
       join_lattice(graph, cs.start, false, sv, cs.start_vertex, cs.start_connection);

@@ -235,15 +235,28 @@ void refuse_gog_options(const cli::GridArgs& a) {
 // ends the search as an InputError (ValueError) with one line.
 class PythonSpace final : public ConfigSpace {
  public:
-  PythonSpace(py::function fn, std::vector<AxisBounds> axes, double resolution_fraction)
-      : ConfigSpace("python", std::move(axes), 1.0), fn_(std::move(fn)) {
-    // The resolution is a fraction of the bounds' diagonal, as for the benchmark spaces.
-    set_resolution(resolution_fraction * maximum_extent());
-  }
+  // `resolution`: the absolute motion-check step (python_space: a fraction of the diagonal).
+  PythonSpace(py::function fn, std::vector<AxisBounds> axes, double resolution)
+      : ConfigSpace("python", std::move(axes), resolution), fn_(std::move(fn)) {}
   ~PythonSpace() override {
     py::gil_scoped_acquire gil;
     fn_ = py::function();
+    pending_ = py::object();
   }
+
+  // A KeyboardInterrupt or SystemExit raised inside fn (Ctrl-C lands there: the GIL is held
+  // only while fn runs, so Python's handler raises it in fn) ended the search: it is raised
+  // again once the call is back in Python, as itself, not as a ValueError. GIL held.
+  void raise_pending() const {
+    if (!pending_) return;
+    py::object e = std::move(pending_);
+    PyErr_SetObject(reinterpret_cast<PyObject*>(Py_TYPE(e.ptr())), e.ptr());
+    throw py::error_already_set();
+  }
+  // What the search throws when fn raised one of those (caught by solve()).
+  struct Aborted : std::runtime_error {
+    Aborted() : std::runtime_error("valid= was interrupted") {}
+  };
 
  protected:
   bool valid(const double* state) const override {
@@ -260,6 +273,10 @@ class PythonSpace final : public ConfigSpace {
     try {
       answer = fn_(batch);
     } catch (py::error_already_set& e) {
+      if (!e.matches(PyExc_Exception)) {  // KeyboardInterrupt, SystemExit: not the user's bug
+        pending_ = e.value();
+        throw Aborted();
+      }
       std::string what = e.what();
       what = what.substr(0, what.find('\n'));
       throw InputError("valid= raised " + what);
@@ -274,37 +291,55 @@ class PythonSpace final : public ConfigSpace {
                        std::to_string(k) + ", " + std::to_string(d) + ") array of states, got " +
                        py::str(a.attr("shape")).cast<std::string>() + " of " +
                        py::str(a.dtype()).cast<std::string>());
-    const auto b = py::array_t<std::uint8_t, py::array::forcecast>::ensure(a);
+    // Nonzero is true, read in the answer's own type (256 is true, not a uint8 0).
+    const py::array truth = kind == 'b' ? a : py::array(a.attr("__ne__")(0));
+    const auto b = py::array_t<bool, py::array::forcecast>::ensure(truth);
     const auto view = b.unchecked<1>();
-    for (std::size_t i = 0; i < k; ++i) out[i] = view(static_cast<py::ssize_t>(i)) != 0;
+    for (std::size_t i = 0; i < k; ++i) out[i] = view(static_cast<py::ssize_t>(i)) ? 1 : 0;
   }
 
  private:
   py::function fn_;
+  mutable py::object pending_;
 };
 
 // valid=, bounds= and periodic= as a space (GIL held): bounds a sequence of (low, high) pairs,
 // periodic one boolean per axis (default none).
-std::shared_ptr<const ConfigSpace> python_space(const py::object& valid, const py::object& bounds,
+std::shared_ptr<const PythonSpace> python_space(const py::object& valid, const py::object& bounds,
                                                 const py::object& periodic, double fraction) {
   if (!PyCallable_Check(valid.ptr()))
     throw InputError("valid= must be a function of a (k, d) array of states");
   if (bounds.is_none()) throw InputError("valid= needs bounds=[(low, high), ...], one per axis");
   std::vector<AxisBounds> axes;
-  for (const auto& pair : bounds) {
-    const auto lh = py::cast<std::vector<double>>(pair);
-    if (lh.size() != 2) throw InputError("bounds= must be (low, high) pairs, one per axis");
-    axes.push_back({lh[0], lh[1], false});
+  double diagonal = 0.0;
+  try {
+    for (const auto& pair : bounds) {
+      const auto lh = py::cast<std::vector<double>>(pair);
+      if (lh.size() != 2) throw InputError("bounds= must be (low, high) pairs, one per axis");
+      axes.push_back({lh[0], lh[1], false});
+      diagonal += (lh[1] - lh[0]) * (lh[1] - lh[0]);
+    }
+  } catch (const py::cast_error&) {
+    throw InputError("bounds= must be (low, high) pairs of numbers, one per axis");
   }
   if (!periodic.is_none()) {
-    const auto flags = py::cast<std::vector<bool>>(periodic);
+    std::vector<bool> flags;
+    try {
+      flags = py::cast<std::vector<bool>>(periodic);
+    } catch (const py::cast_error&) {
+      throw InputError("periodic= must be a sequence of booleans, one per axis");
+    }
     if (flags.size() != axes.size())
       throw InputError("periodic= needs one flag per axis: " + std::to_string(axes.size()) +
                        ", got " + std::to_string(flags.size()));
     for (std::size_t i = 0; i < axes.size(); ++i) axes[i].periodic = flags[i];
   }
+  // The motion-check step: a fraction of the bounds' diagonal, as for the benchmark spaces.
+  diagonal = std::sqrt(diagonal);
+  if (!std::isfinite(diagonal) || !(diagonal > 0.0))
+    throw InputError("bounds= must span a finite, positive diagonal");
   return std::make_shared<PythonSpace>(py::reinterpret_borrow<py::function>(valid), std::move(axes),
-                                       fraction > 0.0 ? fraction : 0.01);
+                                       (fraction > 0.0 ? fraction : 0.01) * diagonal);
 }
 
 // One query: on the GOG field the options describe, on `on_field` (built once), or on the
@@ -316,10 +351,12 @@ py::tuple solve(const std::vector<std::string>& tokens, const StopSource* stop,
   auto a = std::make_shared<cli::GridArgs>(parse_cached<cli::GridArgs>(
       "hpcplan grid", tokens,
       [](CLI::App* c, cli::GridArgs& args) { cli::add_grid_options(c, args); }));
+  std::shared_ptr<const PythonSpace> user_space;
   if (!valid.is_none()) {
     if (!array.is_none() || on_field != nullptr)
       throw InputError("valid= defines the space; it takes no occupancy= or Field");
-    a->space = python_space(valid, bounds, periodic, a->resolution);
+    user_space = python_space(valid, bounds, periodic, a->resolution);
+    a->space = user_space;
   } else if (!bounds.is_none() || !periodic.is_none()) {
     throw InputError("bounds= and periodic= describe a space of your own: give valid= too");
   }
@@ -346,25 +383,36 @@ py::tuple solve(const std::vector<std::string>& tokens, const StopSource* stop,
     GridReport report;
     nlohmann::json json;
   };
-  Answer answer = call_released<Answer>(
-      [&](const cli::RunControl& control) {
-        cli::prepare_grid_run(*a, 0, 1, control);
-        if (bytes) grid = grid_of(*bytes);  // the caller's frame holds `array` meanwhile
-        if (grid) {
-          GridProblem p = occupancy_problem(grid, a->problem.connectivity);
-          p.start = std::move(a->problem.start);
-          p.goal = std::move(a->problem.goal);
-          a->problem = std::move(p);
-        }
-        Answer r;
-        r.report = on_field != nullptr && on_field->field
-                       ? solve_grid(*on_field->field, a->problem, a->options)
-                       : solve_grid(a->problem, a->options);
-        r.json = cli::finish_grid_run(r.report, *a, control);
-        r.json.erase("path");  // given as an array instead
-        return r;
-      },
-      stop, on_ctrl_c);
+  auto run = [&] {
+    return call_released<Answer>(
+        [&](const cli::RunControl& control) {
+          cli::prepare_grid_run(*a, 0, 1, control);
+          if (bytes) grid = grid_of(*bytes);  // the caller's frame holds `array` meanwhile
+          if (grid) {
+            GridProblem p = occupancy_problem(grid, a->problem.connectivity);
+            p.start = std::move(a->problem.start);
+            p.goal = std::move(a->problem.goal);
+            a->problem = std::move(p);
+          }
+          Answer r;
+          r.report = on_field != nullptr && on_field->field
+                         ? solve_grid(*on_field->field, a->problem, a->options)
+                         : solve_grid(a->problem, a->options);
+          r.json = cli::finish_grid_run(r.report, *a, control);
+          r.json.erase("path");  // given as an array instead
+          return r;
+        },
+        stop, on_ctrl_c);
+  };
+  // A KeyboardInterrupt (or SystemExit) raised inside valid= comes back as itself.
+  Answer answer = [&] {
+    try {
+      return run();
+    } catch (const PythonSpace::Aborted&) {
+      user_space->raise_pending();
+      throw;
+    }
+  }();
   py::object path = py::none();
   if (a->options.keep_path && answer.report.result.status == Status::solved) {
     if (answer.report.cspace) {

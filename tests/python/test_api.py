@@ -28,8 +28,8 @@ def cli_options(command):
     ("sim", hpcplan.sim.run)])
 def test_keywords_are_the_cli_options(command, function):
     names = set(inspect.signature(function).parameters) - {"self", "start", "goal", "stop"}
-    if command == "grid":  # occupancy= is the module's own: an array has no command-line form
-        names -= {"occupancy"}
+    if command == "grid":  # occupancy= and a space's valid=, bounds=, periodic= are the
+        names -= {"occupancy", "valid", "bounds", "periodic"}  # module's own: no command line
     expected = cli_options(command) - CLI_ONLY[command]
     if command != "map3d":
         names |= {"start", "goal"} & cli_options(command)
@@ -58,7 +58,9 @@ def test_help_shows_types_defaults_ranges_and_choices():
     assert inspect.signature(hpcplan.sphere2d.SphereMap.plan).parameters["resolution"].default \
         == 0.25
     text = pydoc_text(hpcplan.grid.solve)
-    assert "solve(*, dims: Optional[int] = None, map: Optional[str] = None, algo: str = 'astar'" in text
+    assert "solve(*, dims: Optional[int] = None, map: Optional[str] = None, world: Optional[str] " \
+        "= None, cells: int = 0" in text
+    assert "algo: str = 'astar'" in text
     # The registry's parameters carry the registry's ranges and defaults.
     declared = {p["name"]: p for planner in hpcplan.planners("map3d")["planners"]
                 for p in planner["params"]}

@@ -103,3 +103,41 @@ def test_bad_spaces_are_refused_with_one_line():
         hpcplan.grid.solve(world="chain", dims=1)
     with pytest.raises(ValueError, match="unknown configuration space"):
         hpcplan.grid.solve(world="arm", dims=4)
+
+
+def test_ctrl_c_inside_a_validity_function_is_a_keyboard_interrupt():
+    import os
+    import signal
+    import threading
+    import time
+
+    def slow(states):
+        time.sleep(0.002)
+        return np.ones(len(states), bool)
+
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            hpcplan.grid.solve(valid=slow, bounds=[(0, 1)] * 3, cells=200, start=(0, 0, 0),
+                               goal=(1, 1, 1), algo="dijkstra")
+    finally:
+        timer.cancel()
+
+    def leave(states):
+        raise SystemExit(3)
+
+    with pytest.raises(SystemExit):
+        hpcplan.grid.solve(valid=leave, bounds=[(0, 1)] * 2, cells=8, start=(0, 0), goal=(1, 1))
+
+
+def test_integer_answers_are_true_when_nonzero():
+    r = hpcplan.grid.solve(valid=lambda q: np.full(len(q), 256), bounds=[(0, 1)] * 2, cells=8,
+                           start=(0, 0), goal=(1, 1))
+    assert r.status == "solved"
+    with pytest.raises(ValueError, match="bounds= must be"):
+        hpcplan.grid.solve(valid=lambda q: np.ones(len(q), bool), bounds="ab", cells=8,
+                           start=(0, 0), goal=(1, 1))
+    with pytest.raises(ValueError, match="periodic= must be"):
+        hpcplan.grid.solve(valid=lambda q: np.ones(len(q), bool), bounds=[(0, 1)] * 2,
+                           periodic=3, cells=8, start=(0, 0), goal=(1, 1))

@@ -125,9 +125,8 @@ TEST(CSpacePlanning, AStarEqualsTheTestsOwnDijkstraOnSmallChainsAndCubes) {
     CSpaceMoves moves;
   };
   for (const Case c :
-       {Case{"chain", 3, 16, CSpaceMoves::axes},
-        Case{"chain", 3, 12, CSpaceMoves::seed_pairs}, Case{"chain", 4, 8, CSpaceMoves::axes},
-        Case{"hypercube", 3, 11, CSpaceMoves::seed_pairs},
+       {Case{"chain", 3, 16, CSpaceMoves::axes}, Case{"chain", 3, 12, CSpaceMoves::seed_pairs},
+        Case{"chain", 4, 8, CSpaceMoves::axes}, Case{"hypercube", 3, 11, CSpaceMoves::seed_pairs},
         Case{"hypercube", 4, 11, CSpaceMoves::axes}}) {
     SCOPED_TRACE(std::string(c.world) + " " + std::to_string(c.dims));
     const BenchmarkSpace b = make_benchmark_space(c.world, c.dims);
@@ -282,6 +281,77 @@ TEST(CSpacePlanning, BatchAndSingleChecksGiveTheSameSearch) {
     EXPECT_GT(batch.cspace->batches, 0u);
     EXPECT_EQ(single.cspace->batches, 0u);
   }
+}
+
+}  // namespace
+}  // namespace hpcplan
+
+namespace hpcplan {
+namespace {
+
+// What a review found (each case failed before its fix): a step so fine that the motion's
+// sample count overflowed (paths through obstacles, reported solved), a start tested before it
+// was wrapped, start = goal reported as a round trip, a goal on a bounded axis's upper face
+// offered one candidate vertex, and the last vertex of a bounded axis a rounding past its bound.
+class Strip final : public ConfigSpace {
+ public:
+  Strip(double lower, double upper, double mid)
+      : ConfigSpace("strip", {{lower, upper, false}, {lower, upper, false}}, 0.001), mid_(mid) {}
+
+ protected:
+  // Free except a wall along the upper face in x, open only within 0.02 of y = mid; nothing
+  // past the upper bound (a vertex rounded past it would be in collision).
+  bool valid(const double* q) const override {
+    const double top = axes()[0].upper;
+    return !(q[0] >= top - 0.03 && std::abs(q[1] - mid_) >= 0.02) && q[0] <= top && q[1] <= top;
+  }
+
+ private:
+  double mid_;
+};
+
+TEST(CSpacePlanning, ReviewedEdgeCases) {
+  EXPECT_THROW(make_benchmark_space("hypercube", 3, 1e-300), InputError);
+  EXPECT_THROW(make_benchmark_space("chain", 4, 1e-9), InputError);
+
+  // An angle of 1e300 is tested as the angle it wraps to, and planned from it.
+  const BenchmarkSpace chain = make_benchmark_space("chain", 4);
+  GridProblem p = cspace_problem(chain, 16, CSpaceMoves::seed_pairs);
+  p.cspace->start[1] += 2 * std::numbers::pi * 1e6;
+  const GridReport wrapped = solve(p, GridAlgorithm::astar);
+  const GridReport plain =
+      solve(cspace_problem(chain, 16, CSpaceMoves::seed_pairs), GridAlgorithm::astar);
+  EXPECT_EQ(wrapped.result.status, plain.result.status);
+  EXPECT_NEAR(wrapped.result.cost, plain.result.cost, 1e-6);
+
+  // Start = goal: that state, no move.
+  const BenchmarkSpace cube = make_benchmark_space("hypercube", 3);
+  p = cspace_problem(cube, 11, CSpaceMoves::seed_pairs);
+  p.cspace->start = p.cspace->goal = {0.05, 0.05, 0.05};
+  const GridReport same = solve(p, GridAlgorithm::astar);
+  EXPECT_EQ(same.result.status, Status::solved);
+  EXPECT_EQ(same.result.cost, 0.0);
+  EXPECT_EQ(same.result.hops, 0u);
+
+  // A goal on the upper face whose two face vertices are walled off joins one of the cell's
+  // inner corners (the face offered only the face's vertices before).
+  p = GridProblem{};
+  p.dims = 2;
+  p.extent = 11;
+  p.cspace = CSpaceQuery{
+      std::make_shared<Strip>(0.0, 1.0, 0.45), CSpaceMoves::seed_pairs, {0.5, 0.5}, {1.0, 0.45}};
+  const GridReport face = solve(p, GridAlgorithm::astar);
+  EXPECT_EQ(face.result.status, Status::solved) << face.cspace->unconnected;
+
+  // The top vertex of a bounded axis is the bound itself: on (-1, 0.3) with 5 cells,
+  // -1 + 4 * 0.325 rounds to 0.30000000000000004.
+  p.extent = 5;
+  p.cspace = CSpaceQuery{
+      std::make_shared<Strip>(-1.0, 0.3, 0.3), CSpaceMoves::seed_pairs, {-1.0, -1.0}, {0.3, 0.3}};
+  const GridReport top = solve(p, GridAlgorithm::astar);
+  ASSERT_EQ(top.result.status, Status::solved) << top.cspace->unconnected;
+  for (const auto& q : top.cspace->path)
+    for (double v : q) EXPECT_LE(v, 0.3);
 }
 
 }  // namespace

@@ -31,6 +31,9 @@
 
 namespace hpcplan {
 
+// The most samples a motion across a whole space may take: resolution >= extent / 1e7.
+inline constexpr double kMaxMotionSamples = 1e7;
+
 struct AxisBounds {
   double lower = 0.0;
   double upper = 1.0;
@@ -66,12 +69,13 @@ class ConfigSpace {
   bool in_bounds(std::span<const double> state) const;
 
  protected:
-  // Throws InputError if the axes are empty, a bound is not finite or lower >= upper, or the
-  // resolution is not positive.
+  // Throws InputError if the axes are empty, a bound is not finite or lower >= upper, the
+  // bounds' diagonal is not finite, or the resolution is not positive or finer than
+  // maximum_extent() / kMaxMotionSamples.
   ConfigSpace(std::string name, std::vector<AxisBounds> axes, double resolution);
 
   // For a space whose resolution depends on what the base computes (a fraction of
-  // maximum_extent()): InputError if not positive.
+  // maximum_extent()): InputError if not positive or finer than extent / kMaxMotionSamples.
   void set_resolution(double resolution);
 
   virtual bool valid(const double* state) const = 0;

@@ -75,7 +75,12 @@ class CSpaceGraph {
   }
   // The configuration of a vertex.
   void vertex(const int* coords, double* q) const {
-    for (int a = 0; a < dims_; ++a) q[a] = lower_[a] + coords[a] * step_[a];
+    for (int a = 0; a < dims_; ++a) q[a] = coordinate(a, coords[a]);
+  }
+  // One axis's value at cell i: a bounded axis's last cell is its upper bound exactly (not
+  // lower + (cells - 1) * step, which round-off can put outside the bounds).
+  double coordinate(int axis, int i) const {
+    return !periodic_[axis] && i == cells_ - 1 ? upper_[axis] : lower_[axis] + i * step_[axis];
   }
   std::vector<double> vertex(const State& s) const;
   // The vertices around a configuration (each axis's two nearest cells, nearest first), at most
@@ -145,7 +150,7 @@ class CSpaceGraph {
   int cells_;
   CSpaceMoves moves_kind_;
   KeyLayout layout_;
-  std::vector<double> lower_, step_;
+  std::vector<double> lower_, upper_, step_;
   std::vector<bool> periodic_;
   std::vector<MoveDef> moves_;
 

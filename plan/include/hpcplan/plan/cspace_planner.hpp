@@ -31,7 +31,8 @@ GridReport solve_cspace(const GridProblem& problem, const GridSearchOptions& opt
 
 // The steps every engine shares. begin: validates, fills the report's problem and options and
 // the state budget (split among `ranks_sharing_memory`), and joins both ends to the lattice
-// (false: one joined nothing, the report says which and its status is no_path).
+// (false: nothing to search: one end joined nothing, the report says which and its status is
+// no_path; or start and goal are one state, the report solved at cost 0).
 struct CSpaceRun {
   GridReport report;
   CSpaceGraph::State start, goal;
