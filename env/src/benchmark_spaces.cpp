@@ -36,7 +36,7 @@ BenchmarkSpace make_benchmark_space(std::string_view name, int dims, double frac
     // Up to 6 links, joint steps of pi/(2n): the start's angles pi/n are vertices. Beyond, the
     // (4n)^n lattice outgrows A* (8 links at 32 cells did not finish in 10 s on the 2-core VM),
     // and coarser ones still thread the horn: 16 cells to 8 links (0.38 s at 8), 12 beyond
-    // (16 links in 7.6 s; 16 cells there leave the start joined to no vertex). docs/CSPACE.md.
+    // (16 links in 110 s; 16 cells there leave the start joined to no vertex). docs/CSPACE.md.
     b.cells = dims <= 6 ? 4 * dims : dims <= 8 ? 16 : 12;
     b.space = std::move(chain);
   } else {
