@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite: install, build, run every test; then the unit, CLI, OMPL, MPI, fluid and
-# simulator suites again under AddressSanitizer + UndefinedBehaviorSanitizer, a few seconds of
-# libFuzzer on every parser's fuzz target, and the threaded tests (stop token, cancellation,
+# simulator suites again under AddressSanitizer + UndefinedBehaviorSanitizer (the fuzz targets'
+# corpus replays among them), and the threaded tests (stop token, cancellation,
 # planners sharing a world, the simulator's planner thread, the dense engine's and the fluid's
 # OpenMP loops) under ThreadSanitizer.
 set -euo pipefail
@@ -115,18 +115,15 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktra
 # and neighbour-list tests of this stage, over more states. The MPI maps test (mpi_maps: 25 mpirun launches of the CLI
 # on MovingAI maps and an array) runs in the Release stage only: the occupancy code it drives
 # (expansions, dense windows, scenario rows) runs under ASan in the unit tests, and the
-# distributed engines in the MPI suite.
+# distributed engines in the MPI suite. The MPI failure tests (killed and hung ranks under
+# mpirun: 35 s under ASan) exercise the CLI's error paths, which the CLI suites here also reach.
 (cd build-asan && ctest_run --timeout 900 -L "unit|cli|ompl|mpi|sph|sim" \
-  -E '^(Cli\.EveryNumericOptionRefusesBadValues|WaterValidation\..*|Simulator\.DamBreakCrossing|Invariants\.ThreadCountDoesNotChangeTheResult|mpi_distributed_np[1348]|mpi_maps|DenseHighDims\..*|VerletLists\.ASkinChangesNothingButRoundOff)$')
+  -E '^(Cli\.EveryNumericOptionRefusesBadValues|WaterValidation\..*|Simulator\.DamBreakCrossing|Invariants\.ThreadCountDoesNotChangeTheResult|mpi_distributed_np[1348]|mpi_maps|mpi_cli_failures|DenseHighDims\..*|VerletLists\.ASkinChangesNothingButRoundOff)$')
 
-stage "build (libFuzzer: the parsers' fuzz targets)"
-# Clang's libFuzzer in a tree of its own, holding only the fuzz targets: each compiles its
-# parsers' sources itself (tests/fuzz/CMakeLists.txt). Their replays over the committed corpus
-# ran in both stages above (label unit); here each target fuzzes for a few seconds from it.
-bash scripts/fuzz.sh --build
-slowest steps build-fuzz
-stage "tests (libFuzzer)"
-(cd build-fuzz && ctest_run --timeout 300 -L '^fuzz$')
+# (The libFuzzer stage, a clang tree of the fuzz targets fuzzing each for a few seconds, ran here
+# until issue 48: 1:32 of a cold run that had reached 30:05 on the 2-core VM. Every target's
+# replay over its committed corpus still runs in both stages above (label unit, under ASan in
+# the second); `bash scripts/fuzz.sh [SECONDS]` builds that tree and fuzzes.)
 
 stage "build (ThreadSanitizer: threaded tests)"
 # Built with clang and LLVM's OpenMP runtime: GCC's libgomp is not instrumented, so TSan cannot
