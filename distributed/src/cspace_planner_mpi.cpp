@@ -3,7 +3,6 @@
 // it expands (their ends and edges, in batches) before routing them to their owners, so the
 // collision checks, which dominate on a mechanism's space, are spread over the ranks.
 #include <algorithm>
-#include <thread>
 
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/stopwatch.hpp"
@@ -52,26 +51,9 @@ GridReport solve_cspace_distributed(const GridProblem& problem, const GridSearch
     comm.quiet_barrier();
   }
 
-  // A user's budget is the job's total; the derived one is already per rank.
-  std::uint64_t per_rank = report.options.max_states;
-  if (options.max_states != 0)
-    per_rank =
-        (options.max_states + static_cast<std::uint64_t>(p) - 1) / static_cast<std::uint64_t>(p);
-  else
-    report.options.max_states = per_rank * static_cast<std::uint64_t>(p);
+  const std::uint64_t per_rank = per_rank_budget(options, report, p);
   const auto eo = hpcplan::detail::engine_options(options, report.options.weight, per_rank);
-
-  DistOptions d;
-  d.scheme = options.algorithm == GridAlgorithm::bfs ? Scheme::level_sync : dist.scheme;
-  d.batch = dist.batch;
-  d.batch_age_ms = dist.batch_age_ms;
-  d.sync_every = dist.sync_every;
-  d.sent_filter_log2 = dist.sent_filter_log2;
-  d.yield_when_idle = comm.ranks_on_node() > static_cast<int>(std::thread::hardware_concurrency());
-  if (comm.rank() == dist.fault_rank) {
-    d.fail_after_expansions = dist.fault_after;
-    d.fault_kill = dist.fault_kill;
-  }
+  const DistOptions d = rank_options(options.algorithm, dist, comm);
   using Owner = partition::Ownership<CSpaceGraph::kWords>;
   const Owner owner(graph.layout(), p, dist.coarsen_shift);
 

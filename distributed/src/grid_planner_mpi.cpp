@@ -2,8 +2,8 @@
 
 #include "hpcplan/distributed/mpi_slab_transport.hpp"
 
-#include <optional>
 #include <algorithm>
+#include <optional>
 #include <thread>
 
 #include "hpcplan/core/error.hpp"
@@ -68,32 +68,18 @@ void validate(const DistGridOptions& o, int extent, int ranks, int dims) {
     throw InputError("--sent-filter must be in 0..28 (log2 of its slots)");
 }
 
-namespace {
+std::uint64_t per_rank_budget(const GridSearchOptions& options, GridReport& report, int ranks) {
+  const auto p = static_cast<std::uint64_t>(ranks);
+  if (options.max_states != 0) return (options.max_states + p - 1) / p;
+  const std::uint64_t per_rank = report.options.max_states;
+  report.options.max_states = per_rank * p;
+  return per_rank;
+}
 
-template <int W>
-void run_distributed(const ObstacleSource& field, const GridProblem& problem, const GridSearchOptions& o,
-                     const DistGridOptions& dist, const mpi::Communicator& comm,
-                     GridReport& report) {
-  LatticeGraph<W> graph(field, problem.connectivity);
-  const auto start = graph.pack(report.problem.start);
-  const auto goal = graph.pack(report.problem.goal);
-  const int p = comm.size();
-  // A user's budget is the job's total; the derived one is already per rank.
-  std::uint64_t per_rank = report.options.max_states;
-  if (o.max_states != 0)
-    per_rank = (o.max_states + static_cast<std::uint64_t>(p) - 1) / static_cast<std::uint64_t>(p);
-  else
-    report.options.max_states = per_rank * static_cast<std::uint64_t>(p);
-  auto eo = hpcplan::detail::engine_options(o, report.options.weight, per_rank);
-  // The serial engine's rule: small one-word lattices keep their states in the dense store
-  // (each rank faults in only the pages its own states fall on).
-  const bool dense = W == 1 && dense_visited_fits(problem.dims, problem.extent);
-  if (dense) eo.dense_keys = graph.layout().dense_index_bound();
-  report.options.visited_map =
-      dense ? search::StampedDensePolicy::name : search::DefaultVisitedMap::name;
-
+DistOptions rank_options(GridAlgorithm algorithm, const DistGridOptions& dist,
+                         const mpi::Communicator& comm) {
   DistOptions d;
-  d.scheme = o.algorithm == GridAlgorithm::bfs ? Scheme::level_sync : dist.scheme;
+  d.scheme = algorithm == GridAlgorithm::bfs ? Scheme::level_sync : dist.scheme;
   d.batch = dist.batch;
   d.batch_age_ms = dist.batch_age_ms;
   d.sync_every = dist.sync_every;
@@ -103,6 +89,29 @@ void run_distributed(const ObstacleSource& field, const GridProblem& problem, co
     d.fail_after_expansions = dist.fault_after;
     d.fault_kill = dist.fault_kill;
   }
+  return d;
+}
+
+namespace {
+
+template <int W>
+void run_distributed(const ObstacleSource& field, const GridProblem& problem,
+                     const GridSearchOptions& o, const DistGridOptions& dist,
+                     const mpi::Communicator& comm, GridReport& report) {
+  LatticeGraph<W> graph(field, problem.connectivity);
+  const auto start = graph.pack(report.problem.start);
+  const auto goal = graph.pack(report.problem.goal);
+  const int p = comm.size();
+  const std::uint64_t per_rank = per_rank_budget(o, report, p);
+  auto eo = hpcplan::detail::engine_options(o, report.options.weight, per_rank);
+  // The serial engine's rule: small one-word lattices keep their states in the dense store
+  // (each rank faults in only the pages its own states fall on).
+  const bool dense = W == 1 && dense_visited_fits(problem.dims, problem.extent);
+  if (dense) eo.dense_keys = graph.layout().dense_index_bound();
+  report.options.visited_map =
+      dense ? search::StampedDensePolicy::name : search::DefaultVisitedMap::name;
+
+  const DistOptions d = rank_options(o.algorithm, dist, comm);
   const partition::Ownership<W> owner(graph.layout(), p, dist.coarsen_shift, dist.slab_width,
                                       problem.extent, dist.prefix_cuts);
 

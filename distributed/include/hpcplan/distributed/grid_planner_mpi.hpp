@@ -40,6 +40,14 @@ void validate(const DistGridOptions& options, int extent = 0, int ranks = 0, int
 GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOptions& options,
                                   const DistGridOptions& dist, const mpi::Communicator& comm);
 
+// The steps both distributed planners (the lattices', the configuration spaces') share: the
+// state budget per rank (a user's --max-states is the job's total, split; a derived one is
+// already per rank, and the report then shows the job's), and the engine's options for this rank
+// (BFS always level-synchronous; the fault injection on its rank; yielding when oversubscribed).
+std::uint64_t per_rank_budget(const GridSearchOptions& options, GridReport& report, int ranks);
+DistOptions rank_options(GridAlgorithm algorithm, const DistGridOptions& dist,
+                         const mpi::Communicator& comm);
+
 // The same on a configuration space (GridProblem::cspace, plan/cspace_planner.hpp): hashed
 // ownership only; solve_grid_distributed hands such a problem here.
 GridReport solve_cspace_distributed(const GridProblem& problem, const GridSearchOptions& options,
