@@ -1,22 +1,21 @@
 #pragma once
 // Exact Dijkstra on the dense lattice by cost classes (dense_search.hpp states why the order is
-// exact). A class is an exact path cost (ones + root2 sqrt2 + root3 sqrt3) with its move count;
-// its states are lists of (tile, bits). Each thread keeps the classes of its sub-slab in value
-// order. A bucket [k, k + 1) is processed in one pass: each thread takes its classes below
-// k + 1 in order, settles the bits not yet settled (the first class to hold a state is its
-// cost), and files the targets into the classes one move more expensive, its own or, past its
-// sub-slab, an outbox. Then one exchange and one reduction (the next bucket is the floor of the
-// smallest pending class anywhere; the goal settled; nothing left; a stop). A run ends with the
-// bucket that settles the goal, processed whole, so its counts do not depend on the number of
-// ranks or threads. The same reduction says when to write a checkpoint (dense_checkpoint.hpp),
-// after the bucket's outboxes are filed.
+// exact), as the superstep driver's algorithm (superstep.hpp): one step is one bucket. A class is
+// an exact path cost (ones + root2 sqrt2 + root3 sqrt3) with its move count; its states are lists
+// of (tile, bits). Each thread keeps the classes of its sub-slab in value order. A bucket [k, k +
+// 1) is processed in one pass: each thread takes its classes below k + 1 in order, settles the bits
+// not yet settled (the first class to hold a state is its cost), and files the targets into the
+// classes one move more expensive, its own or, past its sub-slab, an outbox. Then the driver's
+// exchange and decision (the next bucket is the floor of the smallest pending class anywhere; the
+// goal settled; nothing left; a stop). A run ends with the bucket that settles the goal, processed
+// whole, so its counts do not depend on the number of ranks or threads.
 #include <limits>
 #include <map>
 
-#include "engine_checkpoint.hpp"
 #include "engine_common.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/dense/zeroed_words.hpp"
+#include "superstep.hpp"
 
 namespace hpcplan::dense::detail {
 
@@ -54,32 +53,20 @@ struct ClassEntry {
 };
 
 template <int D, int K, class Kernel>
-class CostClassDijkstra {
+class CostClassDijkstra final : public SuperstepAlgorithm {
  public:
   CostClassDijkstra(const ObstacleSource& field, const Query& q, SlabTransport& tr,
                     const TileLayout& layout, const FreeWindows& windows, const Kernel& kernel,
-                    const SlabMap& slabs)
+                    const SlabMap& slabs, std::uint64_t free_states)
       : field_(field),
         q_(q),
         tr_(tr),
         layout_(layout),
         windows_(windows),
         kernel_(kernel),
-        slabs_(slabs) {
+        slabs_(slabs),
+        free_states_(free_states) {
     for (int a = 0; a < D; ++a) stride_[a] = layout.stride(a);
-    double free = 0.0;
-    for (double w : free_states_per_layer(field, layout)) free += w;
-    free_states_ = static_cast<std::uint64_t>(free + 0.5);
-  }
-
-  // Settled bits, and with a path each state's class (8 bytes a state).
-  static std::uint64_t store_bytes(std::uint64_t tiles, bool keep_path) {
-    return tiles * 8 + (keep_path ? tiles * 64 * 8 : 0) + 64;
-  }
-
-  Result run() {
-    Result res;
-    Stopwatch clock;
     const int T = slabs_.threads;
     settled_ = ZeroedWords(slabs_.store_tiles);
     if (q_.keep_path) keys_ = ZeroedWords(slabs_.store_tiles * 64);
@@ -89,228 +76,190 @@ class CostClassDijkstra {
       threads_[t].id = t;
     }
     inbox_.resize(T);
-    const std::uint64_t start_tile = layout_.tile_of(q_.start);
     goal_tile_ = layout_.tile_of(q_.goal);
     goal_bit_ = Word{1} << layout_.bit_of(q_.goal);
     // A distance field settles everything reachable whatever the goal.
-    const bool field_run = q_.distances != nullptr;
-    if (field_run) distances_.init(field_, layout_, slabs_, *q_.distances, q_.distances->costs);
-    Totals totals;
-    const Checkpointing& cp = q_.checkpointing;
-    const std::string identity =
-        cp.path.empty() && cp.restart.empty() ? "" : run_identity(field_, q_, slabs_);
-    if (!cp.restart.empty()) {
-      agree_on_restart(tr_, [&] {
-        restore(identity, totals);
-        return totals.buckets;
-      });
-    } else if (slabs_.of_tile(start_tile).rank == slabs_.rank) {
+    field_run_ = q_.distances != nullptr;
+    if (field_run_) distances_.init(field_, layout_, slabs_, *q_.distances, q_.distances->costs);
+  }
+
+  // Settled bits, and with a path each state's class (8 bytes a state).
+  static std::uint64_t store_bytes(std::uint64_t tiles, bool keep_path) {
+    return tiles * 8 + (keep_path ? tiles * 64 * 8 : 0) + 64;
+  }
+
+  Totals start() override {
+    const std::uint64_t start_tile = layout_.tile_of(q_.start);
+    if (slabs_.of_tile(start_tile).rank == slabs_.rank) {
       Thread& th = threads_[slabs_.of_tile(start_tile).thread];
       th.pending[ClassKey{}].push_back({start_tile, Word{1} << layout_.bit_of(q_.start)});
     }
-    const std::uint64_t fixed = settled_.bytes() + keys_.bytes() + windows_.bytes();
+    Totals t;
+    t.peak_pending = 1;
+    return t;
+  }
+  std::uint64_t fixed_bytes() const override {
+    return settled_.bytes() + keys_.bytes() + windows_.bytes();
+  }
 
-    DenseProgress progress(q_.progress_label, q_.progress_after_s, free_states_);
-    CheckpointSchedule schedule(cp);
-    double& bucket = totals.bucket;
-    std::uint64_t &buckets = totals.buckets, &settled_total = totals.settled,
-                  &peak_pending = totals.peak_pending, &list_peak = totals.list_peak;
-    Status status = Status::no_path;
-    bool solved = false, done = false;
-    int save = 0;  // after this bucket: kSave, kSaveAndEnd or 0 (from the master thread)
-    HaloSwap<ClassEntry> halo;
-    const std::uint64_t budget = q_.memory_budget;
-
-    int team = T;
-    bool failed = false;
-#pragma omp parallel num_threads(T) if (T > 1)
-    {
-      const int id = omp_get_thread_num();
-      Thread& me = threads_[id];
-      if (omp_get_num_threads() != T) {
-#pragma omp master
-        team = omp_get_num_threads();
-      } else
-        while (!done) {
-          try {
-            std::size_t n = 0;
-            bool stopped = false;
-            while (!stopped && !me.pending.empty() &&
-                   me.pending.begin()->first.value() < bucket + 1) {
-              auto node = me.pending.extract(me.pending.begin());
-              const ClassKey key = node.key();
-              std::vector<Entry>& list = node.mapped();
-              ++me.epoch;
-              const std::uint64_t settled_before = me.settled;
-              // Where this class's targets go, per move length (axes 1..4).
-              std::vector<Entry>* into[5] = {};
-              for (const Entry& e : list) {
-                if ((++n & 1023) == 0 && poll_stop(workers_stop_, me)) {
-                  stopped = true;
-                  break;
-                }
-                const Block& b = slabs_.of_tile(e.tile);
-                Word& s = settled_[b.store + (e.tile - b.lo)];
-                const Word fresh = e.bits & ~s;
-                if (!fresh) continue;
-                s |= fresh;
-                me.settled += static_cast<std::uint64_t>(std::popcount(fresh));
-                if (q_.keep_path) record(b, e.tile, fresh, key);
-                if (field_run)
-                  distances_.write(layout_, slabs_.block_index_of_tile(e.tile), e.tile, fresh,
-                                   static_cast<float>(key.value()));
-                if (e.tile == goal_tile_ && (fresh & goal_bit_)) {
-                  me.goal_hit = true;
-                  me.goal_key = key;
-                }
-                expand(me, b, e.tile, fresh, key, into);
-              }
-              // Classes that settled a state, a set independent of ranks and threads (a class
-              // whose states all settled earlier elsewhere is not counted).
-              if (me.settled > settled_before) me.processed.push_back(key);
-              me.recycle(std::move(list));
-            }
-            if (budget && list_bytes(me) * T + fixed > budget)
-              me.stop = std::max(me.stop, kStopBudget);
-          } catch (...) {
-            caught(me);
-          }
-#pragma omp barrier
-#pragma omp master
-          try {
-            halo.run(tr_, slabs_, threads_, inbox_);
-          } catch (...) {
-            caught(threads_.front());
-          }
-#pragma omp barrier
-          try {
-            for (const Thread& t : threads_)
-              for (const ClassEntry& e : t.out_local[id]) file(me, e);
-            for (const ClassEntry& e : inbox_[id]) file(me, e);
-          } catch (...) {
-            caught(me);
-          }
-#pragma omp barrier
-#pragma omp master
-          {
-            try {
-              std::uint64_t maxes[3] = {0, 0, static_cast<std::uint64_t>(schedule.due())};
-              std::uint64_t sums[2] = {0, 0};
-              double next = std::numeric_limits<double>::infinity();
-              std::uint64_t lists = 0;
-              poll_stop(q_.stop, threads_.front());
-              for (Thread& t : threads_) {
-                maxes[0] |= t.goal_hit ? 1 : 0;
-                maxes[1] = std::max<std::uint64_t>(maxes[1], t.stop);
-                sums[0] += t.settled_now();
-                sums[1] += t.pending_entries();
-                if (!t.pending.empty()) next = std::min(next, t.pending.begin()->first.value());
-                lists += list_bytes(t);
-              }
-              list_peak = std::max(list_peak, lists);
-              tr_.max(maxes);
-              tr_.sum(sums);
-              tr_.min(std::span<double>(&next, 1));
-              ++buckets;
-              settled_total += sums[0];
-              peak_pending = std::max(peak_pending, sums[1]);
-              if (maxes[1] == kStopFailed) {
-                failed = true;
-                done = true;
-              } else if (maxes[0] && !field_run) {
-                solved = true;
-                done = true;
-              } else if (maxes[1]) {
-                status = stopped_status(maxes[1]);
-                done = true;
-              } else if (!std::isfinite(next)) {
-                status = Status::no_path;
-                done = true;
-              } else {
-                bucket = std::floor(next);
-                save = static_cast<int>(maxes[2]);
-              }
-              progress.update("cost", bucket, settled_total);
-            } catch (...) {
-              caught(threads_.front());
-            }
-            if (threads_.front().error) {  // the reduction itself failed
-              failed = true;
-              done = true;
-            }
-          }
-#pragma omp barrier
-          me.out_down.clear();
-          me.out_up.clear();
-          for (auto& box : me.out_local) box.clear();
-          if (save) {
-            // Every thread has filed what it was sent: the bucket's state is whole.
-#pragma omp barrier
-#pragma omp master
-            {
-              try {
-                save_state(identity, totals);
-              } catch (...) {
-                caught(threads_.front());  // rethrown after the region
-                done = true;
-              }
-              if (save == kSaveAndEnd) {
-                status = Status::interrupted;
-                done = true;
-              }
-              save = 0;
-            }
-#pragma omp barrier
-          }
+  // The classes below the bucket's end, in value order: each settles the bits of its lists not
+  // yet settled (the first class to hold a state is its cost) and files their targets.
+  void work(int id, const Superstep& step, ThreadControl& ctl) override {
+    Thread& me = threads_[id];
+    const double bucket = step.key;
+    std::size_t n = 0;
+    bool stopped = false;
+    while (!stopped && !me.pending.empty() && me.pending.begin()->first.value() < bucket + 1) {
+      auto node = me.pending.extract(me.pending.begin());
+      const ClassKey key = node.key();
+      std::vector<Entry>& list = node.mapped();
+      ++me.epoch;
+      const std::uint64_t settled_before = me.settled;
+      // Where this class's targets go, per move length (axes 1..4).
+      std::vector<Entry>* into[5] = {};
+      for (const Entry& e : list) {
+        if ((++n & 1023) == 0 && ctl.poll()) {
+          stopped = true;
+          break;
         }
+        const Block& b = slabs_.of_tile(e.tile);
+        Word& s = settled_[b.store + (e.tile - b.lo)];
+        const Word fresh = e.bits & ~s;
+        if (!fresh) continue;
+        s |= fresh;
+        me.settled += static_cast<std::uint64_t>(std::popcount(fresh));
+        if (q_.keep_path) record(b, e.tile, fresh, key);
+        if (field_run_)
+          distances_.write(layout_, slabs_.block_index_of_tile(e.tile), e.tile, fresh,
+                           static_cast<float>(key.value()));
+        if (e.tile == goal_tile_ && (fresh & goal_bit_)) {
+          me.goal_hit = true;
+          me.goal_key = key;
+        }
+        expand(me, b, e.tile, fresh, key, into);
+      }
+      // Classes that settled a state, a set independent of ranks and threads (a class whose
+      // states all settled earlier elsewhere is not counted).
+      if (me.settled > settled_before) me.processed.push_back(key);
+      me.recycle(std::move(list));
     }
+  }
+  void receive(int id, const Superstep&) override {
+    Thread& me = threads_[id];
+    for (const Thread& t : threads_)
+      for (const ClassEntry& e : t.out_local[id]) file(me, e);
+    for (const ClassEntry& e : inbox_[id]) file(me, e);
+  }
+  StepReport report(int id) override {
+    Thread& me = threads_[id];
+    StepReport r;
+    r.fresh = me.settled_now();
+    r.pending = me.pending_entries();
+    r.list_bytes = list_bytes(me);
+    if (!me.pending.empty()) r.next_key = me.pending.begin()->first.value();
+    r.goal = me.goal_hit;
+    return r;
+  }
+  std::uint64_t list_bytes(int id) const override { return list_bytes(threads_[id]); }
+  void next_step(int id) override {
+    Thread& me = threads_[id];
+    me.out_down.clear();
+    me.out_up.clear();
+    for (auto& box : me.out_local) box.clear();
+  }
+  void send_halo(std::vector<std::byte>& down, std::vector<std::byte>& up) override {
+    halo_.send(threads_, down, up);
+  }
+  void receive_halo(const std::vector<std::byte>& from_below,
+                    const std::vector<std::byte>& from_above) override {
+    halo_.receive(slabs_, from_below, from_above, inbox_);
+  }
+  // The next bucket: the floor of the smallest class pending anywhere.
+  double next_key(const Decision& d) const override { return std::floor(d.sum.next_key); }
+  const char* progress_unit() const override { return "cost"; }
+  double progress_value(const Totals& t) const override { return t.key; }
 
-    rethrow_failure(threads_, team, failed);
-    if (field_run && status == Status::no_path) {
-      // Ran to its end: solved if some rank settled the goal on the way.
-      std::uint64_t hit = 0;
-      for (const Thread& t : threads_) hit |= t.goal_hit ? 1 : 0;
-      tr_.max(std::span<std::uint64_t>(&hit, 1));
-      solved = hit != 0;
-    }
-    Counters& k = res.counters;
-    std::uint64_t local[2] = {0, 0};
+  std::uint64_t expanded() const override {
+    std::uint64_t n = 0;
+    for (const Thread& t : threads_) n += t.settled;
+    return n;
+  }
+  std::uint64_t generated() const override {
+    std::uint64_t n = 0;
+    for (const Thread& t : threads_) n += t.generated;
+    return n;
+  }
+  void finish(Result& res, const Totals& totals, bool solved) override {
     std::vector<ClassKey> classes;
-    for (const Thread& t : threads_) {
-      local[0] += t.settled;
-      local[1] += t.generated;
+    for (const Thread& t : threads_)
       classes.insert(classes.end(), t.processed.begin(), t.processed.end());
-    }
-    res.figures.rank_expanded = gather_ranks(tr_, local[0]);
-    res.figures.rank_search_ms = gather_ranks(tr_, clock.milliseconds());
-    tr_.sum(std::span<std::uint64_t>(local, 2));
-    k.expanded = local[0];
-    k.generated = local[1];
-    k.peak_states = local[0];
-    k.peak_open = peak_pending;
+    res.counters.peak_states = res.counters.expanded;
+    res.counters.peak_open = totals.peak_pending;
     res.figures.levels = distinct_classes(classes);
-    res.figures.buckets = buckets;
-    res.figures.reached = local[0];
-    res.figures.bytes_needed = fixed;
-    std::uint64_t bytes[2] = {fixed + list_peak, fixed + list_peak};
-    tr_.max(std::span<std::uint64_t>(bytes, 1));
-    tr_.sum(std::span<std::uint64_t>(bytes + 1, 1));
-    res.figures.bytes_per_rank = bytes[0];
-    res.figures.bytes_total = bytes[1];
+    res.figures.buckets = totals.steps;
+    res.figures.reached = res.counters.expanded;
     if (solved) {
       const ClassKey goal = goal_class();
-      res.status = Status::solved;
       res.cost = goal.value();
       res.hops = static_cast<std::uint64_t>(goal.hops);
       if (q_.keep_path) {
         res.path = walk_back(goal);
         res.hops = res.path.size() - 1;
       }
-    } else {
-      res.status = status;
     }
-    k.time_ms = clock.milliseconds();
-    return res;
+  }
+
+  // The state after the last bucket (dense_checkpoint.hpp): the totals in the order of
+  // format 1 (bucket, buckets, settled, peak pending, list peak), then the store and lists.
+  void save(checkpoint::Writer& w, const Totals& totals) const override {
+    w.put(totals.key);
+    w.put(totals.steps);
+    w.put(totals.reached);
+    w.put(totals.peak_pending);
+    w.put(totals.list_peak);
+    w.put_array(std::span<const Word>(settled_.data(), settled_.size()));
+    w.put_array(std::span<const Word>(keys_.data(), keys_.size()));
+    for (const Thread& t : threads_) {
+      w.put(t.settled);
+      w.put(t.generated);
+      w.put_array(t.processed);
+      w.put<std::uint64_t>(t.pending.size());
+      for (const auto& [key, list] : t.pending) {
+        w.put(key);
+        w.put_array(list);
+      }
+    }
+  }
+
+  // The state saved by save() (InputError if it is refused).
+  void restore(checkpoint::Reader& r, Totals& totals) override {
+    totals.key = r.get<double>();
+    totals.steps = r.get<std::uint64_t>();
+    totals.reached = r.get<std::uint64_t>();
+    totals.peak_pending = r.get<std::uint64_t>();
+    totals.list_peak = r.get<std::uint64_t>();
+    r.get_array(std::span<Word>(settled_.data(), settled_.size()));
+    r.get_array(std::span<Word>(keys_.data(), keys_.size()));
+    for (Thread& t : threads_) {
+      t.settled = t.reported = r.get<std::uint64_t>();
+      t.generated = r.get<std::uint64_t>();
+      // (The merge windows start empty, so no epoch of theirs needs restoring.)
+      r.get_array(t.processed);
+      const auto classes = r.get<std::uint64_t>();
+      for (std::uint64_t c = 0; c < classes; ++c) {
+        const auto key = r.get<ClassKey>();
+        // (A path of more moves than the lattice has free states cannot be a shortest one.)
+        if (key.ones < 0 || key.root2 < 0 || key.root3 < 0 || key.hops < 0 ||
+            static_cast<std::uint64_t>(key.hops) > free_states_ || t.pending.count(key))
+          r.fail("lists a class twice or a negative cost (damaged)");
+        std::vector<Entry>& list = t.pending[key];
+        r.get_array(list);
+        for (const Entry& e : list)
+          if (e.tile >= layout_.tile_count() || slabs_.of_tile(e.tile).rank != slabs_.rank ||
+              slabs_.of_tile(e.tile).thread != t.id)
+            r.fail("lists a pending tile this thread does not hold (damaged)");
+      }
+    }
   }
 
  private:
@@ -338,7 +287,6 @@ class CostClassDijkstra {
   };
 
   struct alignas(64) Thread {  // a cache line apart: each thread writes its own counters
-    std::exception_ptr error;  // the first exception of this thread's work (caught())
     std::map<ClassKey, std::vector<Entry>> pending;
     Dedup dedup[5];  // per move length
     std::uint32_t epoch = 0;
@@ -350,7 +298,6 @@ class CostClassDijkstra {
     std::uint64_t settled = 0, generated = 0, reported = 0;
     bool goal_hit = false;
     ClassKey goal_key;
-    int stop = 0;  // kStop* code, the highest wins
 
     std::uint64_t settled_now() {
       const std::uint64_t d = settled - reported;
@@ -375,62 +322,6 @@ class CostClassDijkstra {
       return it->second;
     }
   };
-
-  // The run's figures that carry over a boundary.
-  struct Totals {
-    double bucket = 0.0;
-    std::uint64_t buckets = 0, settled = 0, peak_pending = 1, list_peak = 0;
-  };
-
-  // The state after the last bucket (dense_checkpoint.hpp), into this rank's checkpoint file.
-  void save_state(const std::string& identity, const Totals& totals) const {
-    checkpoint::Writer w;
-    w.put(totals);
-    w.put_array(std::span<const Word>(settled_.data(), settled_.size()));
-    w.put_array(std::span<const Word>(keys_.data(), keys_.size()));
-    for (const Thread& t : threads_) {
-      w.put(t.settled);
-      w.put(t.generated);
-      w.put_array(t.processed);
-      w.put<std::uint64_t>(t.pending.size());
-      for (const auto& [key, list] : t.pending) {
-        w.put(key);
-        w.put_array(list);
-      }
-    }
-    write_checkpoint(q_.checkpointing.path, identity, w.bytes());
-  }
-
-  // The state saved by save_state(), from this rank's --restart file: InputError if refused.
-  void restore(const std::string& identity, Totals& totals) {
-    const std::string& path = q_.checkpointing.restart;
-    const std::string file = read_checkpoint_file(path);
-    checkpoint::Reader r(open_checkpoint(file, path, identity), path);
-    totals = r.get<Totals>();
-    r.get_array(std::span<Word>(settled_.data(), settled_.size()));
-    r.get_array(std::span<Word>(keys_.data(), keys_.size()));
-    for (Thread& t : threads_) {
-      t.settled = t.reported = r.get<std::uint64_t>();
-      t.generated = r.get<std::uint64_t>();
-      // (The merge windows start empty, so no epoch of theirs needs restoring.)
-      r.get_array(t.processed);
-      const auto classes = r.get<std::uint64_t>();
-      for (std::uint64_t c = 0; c < classes; ++c) {
-        const auto key = r.get<ClassKey>();
-        // (A path of more moves than the lattice has free states cannot be a shortest one.)
-        if (key.ones < 0 || key.root2 < 0 || key.root3 < 0 || key.hops < 0 ||
-            static_cast<std::uint64_t>(key.hops) > free_states_ || t.pending.count(key))
-          r.fail("lists a class twice or a negative cost (damaged)");
-        std::vector<Entry>& list = t.pending[key];
-        r.get_array(list);
-        for (const Entry& e : list)
-          if (e.tile >= layout_.tile_count() || slabs_.of_tile(e.tile).rank != slabs_.rank ||
-              slabs_.of_tile(e.tile).thread != t.id)
-            r.fail("lists a pending tile this thread does not hold (damaged)");
-      }
-    }
-    if (r.left() != 0) r.fail("has bytes after its end (damaged)");
-  }
 
   static std::uint64_t list_bytes(const Thread& t) {
     std::uint64_t n = (t.out_down.capacity() + t.out_up.capacity()) * sizeof(ClassEntry);
@@ -583,15 +474,13 @@ class CostClassDijkstra {
   const FreeWindows& windows_;
   const Kernel& kernel_;
   const SlabMap& slabs_;
-  // What every thread polls in its work; the master thread alone also evaluates the query's
-  // condition (Stop's contract: a condition runs on one polling thread), once per level or
-  // bucket.
-  const Stop workers_stop_ = q_.stop.without_condition();
   std::uint64_t free_states_ = 0;
+  bool field_run_ = false;  // a distance field (Query::distances)
   std::array<std::int64_t, kMaxDims> stride_{};
   ZeroedWords settled_, keys_;
   std::vector<Thread> threads_;
   std::vector<std::vector<ClassEntry>> inbox_;  // per thread: what the neighbouring ranks sent it
+  HaloSwap<ClassEntry> halo_;
   std::uint64_t goal_tile_ = 0;
   Word goal_bit_ = 0;
   DistanceWriter<float> distances_;  // a distance field's part (Query::distances)

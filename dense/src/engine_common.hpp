@@ -26,55 +26,6 @@
 
 namespace hpcplan::dense::detail {
 
-// Stop codes of an engine's threads; the highest any thread of any rank raised wins.
-inline constexpr int kStopTimeout = 1, kStopBudget = 2, kStopCancelled = 3,
-                     kStopFailed = 4;  // an exception (caught())
-
-// Polls the query's stop condition for one thread: raises its stop code, says whether to stop.
-template <class Thread>
-bool poll_stop(const Stop& stop, Thread& me) {
-  if (!stop.can_stop()) return false;
-  if (const auto s = stop.check()) {
-    me.stop = std::max(me.stop, *s == Status::cancelled ? kStopCancelled : kStopTimeout);
-    return true;
-  }
-  return false;
-}
-
-// The status of a run that a stop code other than kStopFailed ended.
-inline Status stopped_status(std::uint64_t code) {
-  return code == kStopCancelled ? Status::cancelled
-         : code == kStopBudget  ? Status::budget_exceeded
-                                : Status::timeout;
-}
-
-// An exception may not leave an OpenMP region (std::terminate), so each phase of a thread's
-// work is a try block whose handler calls this: the first exception is kept in the thread's
-// `error` and its stop code becomes kStopFailed; the next reduction ends the run on every
-// rank and thread, and the engine rethrows it after the region (rethrow_failure). (A plain try
-// block, not a function taking the phase as a lambda: through a lambda the 4D BFS ran 1.5x
-// slower.)
-template <class Thread>
-void caught(Thread& me) {
-  if (!me.error) me.error = std::current_exception();
-  me.stop = kStopFailed;
-}
-
-// After the parallel region: an OpenMP team smaller than asked (a thread limit, OMP_DYNAMIC)
-// would have left blocks unexpanded, so it is an error, not an answer; then a thread's
-// exception, or another rank's failure.
-template <class Threads>
-void rethrow_failure(const Threads& threads, int team, bool failed) {
-  if (team != static_cast<int>(threads.size()))
-    throw RunError("dense engine: OpenMP started " + std::to_string(team) + " of the " +
-                   std::to_string(threads.size()) +
-                   " threads asked for (OMP_DYNAMIC or OMP_THREAD_LIMIT); use --threads " +
-                   std::to_string(team));
-  for (const auto& t : threads)
-    if (t.error) std::rethrow_exception(t.error);
-  if (failed) throw RunError("dense engine: another rank failed");
-}
-
 // One tile of a frontier or an outbox: its index and a word of states.
 struct Entry {
   std::uint64_t tile;
@@ -84,6 +35,11 @@ struct Entry {
 template <class T>
 std::span<const std::byte> as_bytes_of(const std::vector<T>& v) {
   return std::as_bytes(std::span<const T>(v.data(), v.size()));
+}
+template <class T>
+void to_bytes(const std::vector<T>& v, std::vector<std::byte>& out) {
+  out.resize(v.size() * sizeof(T));
+  if (!v.empty()) std::memcpy(out.data(), v.data(), out.size());
 }
 template <class T>
 void from_bytes(const std::vector<std::byte>& b, std::vector<T>& out) {
@@ -129,25 +85,28 @@ struct SlabMap {
   bool empty() const { return store_tiles == 0; }
 };
 
-// One rank's halo swap, run by the master thread between two barriers: the threads' outboxes
-// for the ranks below and above, one exchange with them, and what arrived sorted into the
-// inboxes of the threads that own its tiles (read by those threads after the next barrier).
+// One rank's halo swap, by the master thread between the driver's barriers: the threads'
+// outboxes for the ranks below and above, as bytes for the transport's exchange; and what
+// arrived, sorted into the inboxes of the threads that own its tiles (read by those threads
+// after the next barrier).
 template <class Item>
 struct HaloSwap {
   std::vector<Item> down, up, received;
-  std::vector<std::byte> from_below, from_above;
 
   template <class Threads>
-  void run(SlabTransport& tr, const SlabMap& slabs, const Threads& threads,
-           std::vector<std::vector<Item>>& inbox) {
+  void send(const Threads& threads, std::vector<std::byte>& down_bytes,
+            std::vector<std::byte>& up_bytes) {
     down.clear();
     up.clear();
     for (const auto& t : threads) {
       down.insert(down.end(), t.out_down.begin(), t.out_down.end());
       up.insert(up.end(), t.out_up.begin(), t.out_up.end());
     }
-    tr.exchange(slabs.below, as_bytes_of(down), slabs.above, as_bytes_of(up), from_below,
-                from_above);
+    to_bytes(down, down_bytes);
+    to_bytes(up, up_bytes);
+  }
+  void receive(const SlabMap& slabs, const std::vector<std::byte>& from_below,
+               const std::vector<std::byte>& from_above, std::vector<std::vector<Item>>& inbox) {
     for (auto& box : inbox) box.clear();
     for (const std::vector<std::byte>* bytes : {&from_below, &from_above}) {
       from_bytes(*bytes, received);
@@ -228,118 +187,17 @@ class DistanceWriter {
 // Blocks of about this many per worker when block_layers is left to the engine (< 0).
 inline constexpr int kBlocksPerWorker = 4;
 
-inline SlabMap plan_slabs(const ObstacleSource& field, const TileLayout& layout, int rank, int ranks,
-                          int threads, int block_layers) {
-  SlabMap s;
-  s.rank = rank;
-  s.ranks = ranks;
-  s.layer_tiles = layout.layer_tiles();
-  const int layers = layout.layers();
-  const std::vector<double> weights = free_states_per_layer(field, layout);
-  if (block_layers < 0) {
-    const int workers = ranks * std::max(1, threads);
-    block_layers = workers == 1 ? layers : std::max(4, layers / (kBlocksPerWorker * workers));
-  }
-  s.block_layers = block_layers;
-  if (block_layers == 0) {
-    const std::vector<int> rb = balanced_slabs(weights, ranks);
-    for (int r = 0; r < ranks; ++r) {
-      const int n = rb[r + 1] - rb[r];
-      const int t = std::max(1, std::min(threads, n));
-      if (n == 0) continue;
-      const std::vector<double> part(weights.begin() + rb[r], weights.begin() + rb[r + 1]);
-      const std::vector<int> tb = balanced_slabs(part, t);
-      for (int k = 0; k < t; ++k)
-        if (tb[k + 1] > tb[k]) s.blocks.push_back({rb[r] + tb[k], rb[r] + tb[k + 1], r, k});
-    }
-  } else {
-    std::vector<int> count(ranks, 0);
-    for (int z = 0, j = 0; z < layers; z += block_layers, ++j) {
-      const int r = j % ranks;
-      s.blocks.push_back({z, std::min(layers, z + block_layers), r, count[r]++});
-    }
-    // Each rank's k-th block to thread k mod (its threads).
-    for (Block& b : s.blocks) b.thread %= std::max(1, std::min(threads, count[b.rank]));
-  }
-  s.threads = 1;
-  for (const Block& b : s.blocks)
-    if (b.rank == rank) s.threads = std::max(s.threads, b.thread + 1);
-  s.thread_tiles.assign(s.threads, 0);
-  s.rank_layers.assign(ranks, 0);
-  s.layer_block.assign(layers, 0);
-  for (std::size_t j = 0; j < s.blocks.size(); ++j) {
-    Block& b = s.blocks[j];
-    b.lo = static_cast<std::uint64_t>(b.z0) * s.layer_tiles;
-    b.hi = static_cast<std::uint64_t>(b.z1) * s.layer_tiles;
-    for (int z = b.z0; z < b.z1; ++z) s.layer_block[z] = static_cast<int>(j);
-    s.rank_layers[b.rank] += b.z1 - b.z0;
-    if (b.rank != rank) continue;
-    b.store = s.store_tiles;
-    s.store_tiles += b.hi - b.lo;
-    b.mark = s.thread_tiles[b.thread];
-    s.thread_tiles[b.thread] += b.hi - b.lo;
-  }
-  for (std::size_t j = 0; j < s.blocks.size(); ++j) {
-    if (s.blocks[j].rank != rank) continue;
-    if (j > 0 && s.blocks[j - 1].rank != rank) s.below = s.blocks[j - 1].rank;
-    if (j + 1 < s.blocks.size() && s.blocks[j + 1].rank != rank) s.above = s.blocks[j + 1].rank;
-  }
-  return s;
-}
+SlabMap plan_slabs(const ObstacleSource& field, const TileLayout& layout, int rank, int ranks,
+                   int threads, int block_layers);
 
 // The lattice moves as coordinate offsets, in one fixed order (the walk back picks the first
 // legal predecessor in it, so paths do not depend on ranks or threads): one-axis steps, then
 // two-axis steps (the seed rule), or every offset in {-1,0,1}^d but 0 (full connectivity).
-inline std::vector<std::array<int, kMaxDims>> move_offsets(int dims, Connectivity c) {
-  std::vector<std::array<int, kMaxDims>> out;
-  if (c == Connectivity::seed_pairs) {
-    for (int i = 0; i < dims; ++i)
-      for (int s = -1; s <= 1; s += 2) {
-        std::array<int, kMaxDims> o{};
-        o[i] = s;
-        out.push_back(o);
-      }
-    for (int i = 0; i < dims; ++i)
-      for (int k = i + 1; k < dims; ++k)
-        for (int si = -1; si <= 1; si += 2)
-          for (int sk = -1; sk <= 1; sk += 2) {
-            std::array<int, kMaxDims> o{};
-            o[i] = si;
-            o[k] = sk;
-            out.push_back(o);
-          }
-  } else {
-    int count = 1;
-    for (int a = 0; a < dims; ++a) count *= 3;
-    for (int code = 0; code < count; ++code) {
-      std::array<int, kMaxDims> o{};
-      bool any = false;
-      for (int a = 0, q = code; a < dims; ++a, q /= 3) {
-        o[a] = q % 3 - 1;
-        any = any || o[a] != 0;
-      }
-      if (any) out.push_back(o);
-    }
-  }
-  return out;
-}
+std::vector<std::array<int, kMaxDims>> move_offsets(int dims, Connectivity c);
 
 // Whether from -> from + offset is a legal move, from the field formula alone (every corner of
 // the spanned unit cube free, inside the box); its axis count, or 0.
-inline int legal_move(const ObstacleSource& field, const int* from, const std::array<int, kMaxDims>& o) {
-  const int dims = field.dims();
-  int axes[kMaxDims], k = 0;
-  for (int a = 0; a < dims; ++a)
-    if (o[a] != 0) axes[k++] = a;
-  for (unsigned subset = 0; subset < (1u << k); ++subset) {
-    int corner[kMaxDims];
-    std::copy(from, from + dims, corner);
-    for (int j = 0; j < k; ++j)
-      if (subset & (1u << j)) corner[axes[j]] += o[axes[j]];
-    if (!field.is_free(std::span<const int>(corner, dims))) return 0;
-  }
-  return k;
-}
+int legal_move(const ObstacleSource& field, const int* from, const std::array<int, kMaxDims>& o);
 
 // Progress on stderr for runs over 2 s: the level or class, states reached of the lattice's
 // free states, the rate and the time left at that rate.
@@ -347,19 +205,7 @@ class DenseProgress {
  public:
   DenseProgress(std::string label, double after_s, std::uint64_t free_states)
       : label_(std::move(label)), after_s_(after_s), free_(free_states) {}
-  void update(const char* unit, double at, std::uint64_t reached) {
-    if (label_.empty() || !line_.enabled()) return;
-    const double t = clock_.seconds();
-    if (t < after_s_ || (last_ >= 0 && t < last_ + 1.0)) return;
-    last_ = t;
-    const double rate = reached / t;
-    const double left = rate > 0 && free_ > reached ? (free_ - reached) / rate : 0.0;
-    line_.show(
-        "%s: %s %.6g, %.4g of %.4g free states reached (%.1f%%), %.3g states/s, %.0f s, "
-        "at most ~%.0f s left",
-        label_.c_str(), unit, at, static_cast<double>(reached), static_cast<double>(free_),
-        free_ ? 100.0 * reached / free_ : 0.0, rate, t, left);
-  }
+  void update(const char* unit, double at, std::uint64_t reached);
 
  private:
   std::string label_;
@@ -371,14 +217,6 @@ class DenseProgress {
 };
 
 // The exact cost of a lattice path of unit cubes' diagonals.
-inline LatticeCost path_cost(const std::vector<std::vector<int>>& path) {
-  LatticeCost c;
-  for (std::size_t i = 1; i < path.size(); ++i) {
-    int k = 0;
-    for (std::size_t a = 0; a < path[i].size(); ++a) k += path[i][a] != path[i - 1][a];
-    c = c + LatticeCost::for_axes(k);
-  }
-  return c;
-}
+LatticeCost path_cost(const std::vector<std::vector<int>>& path);
 
 }  // namespace hpcplan::dense::detail

@@ -47,13 +47,14 @@ struct TableKernel {
 template <int D, int K, class Kernel>
 Result run_engine(const ObstacleSource& field, const Query& q, SlabTransport& tr,
                   const TileLayout& layout, const FreeWindows& windows, const Kernel& kernel,
-                  const SlabMap& slabs) {
+                  const SlabMap& slabs, std::uint64_t free_states) {
   if (q.algorithm == Algorithm::bfs) {
-    LevelBfs<D, K, Kernel> engine(field, q, tr, layout, windows, kernel, slabs);
-    return engine.run();
+    LevelBfs<D, K, Kernel> bfs(field, q, tr, layout, windows, kernel, slabs, free_states);
+    return run_supersteps(bfs, field, q, tr, slabs, free_states);
   }
-  CostClassDijkstra<D, K, Kernel> engine(field, q, tr, layout, windows, kernel, slabs);
-  return engine.run();
+  CostClassDijkstra<D, K, Kernel> dijkstra(field, q, tr, layout, windows, kernel, slabs,
+                                           free_states);
+  return run_supersteps(dijkstra, field, q, tr, slabs, free_states);
 }
 
 template <int D, int K>
@@ -62,22 +63,26 @@ Result run_shape(const ObstacleSource& field, const Query& q, SlabTransport& tr)
   const FreeWindows windows(field, layout, max_word_steps(q, D));
   const SlabMap slabs =
       plan_slabs(field, layout, tr.rank(), tr.ranks(), std::max(1, q.threads), q.block_layers);
+  double free = 0.0;
+  for (double w : free_states_per_layer(field, layout)) free += w;
+  const auto free_states = static_cast<std::uint64_t>(free + 0.5);
   Result r;
   if constexpr (D > kMaxSeedKernelDims) {
     // Beyond 8D the seed rule runs from the move table: the unrolled kernel's code grows with
     // d^2 and its compile time faster (8D: 19 s for one translation unit; 16D would be minutes),
     // for lattices that are rarely wide enough to be worth it.
     const TableMoves table(layout, 2);
-    r = run_engine<D, K>(field, q, tr, layout, windows, TableKernel<K>{table}, slabs);
+    r = run_engine<D, K>(field, q, tr, layout, windows, TableKernel<K>{table}, slabs, free_states);
   } else {
     if constexpr (D <= kMaxFullConnectivityDims) {
       if (q.connectivity == Connectivity::full) {
         const TableMoves table(layout, D);
-        r = run_engine<D, K>(field, q, tr, layout, windows, TableKernel<K>{table}, slabs);
+        r = run_engine<D, K>(field, q, tr, layout, windows, TableKernel<K>{table}, slabs,
+                             free_states);
       }
     }
     if (q.connectivity != Connectivity::full)
-      r = run_engine<D, K>(field, q, tr, layout, windows, SeedKernel<D, K>{}, slabs);
+      r = run_engine<D, K>(field, q, tr, layout, windows, SeedKernel<D, K>{}, slabs, free_states);
   }
   Figures& f = r.figures;
   f.in_tile_axes = K;
@@ -90,9 +95,7 @@ Result run_shape(const ObstacleSource& field, const Query& q, SlabTransport& tr)
   f.table_bytes = windows.bytes();
   // Every window mask of the table answers 64 validity questions of the field, once.
   r.counters.collision_checks = windows.bytes() / sizeof(Word) * 64;
-  double free = 0.0;
-  for (double w : free_states_per_layer(field, layout)) free += w;
-  f.free_states = static_cast<std::uint64_t>(free + 0.5);
+  f.free_states = free_states;
   std::uint64_t halo[2] = {tr.messages_sent, tr.bytes_sent};
   tr.sum(halo);
   f.halo_messages = halo[0];

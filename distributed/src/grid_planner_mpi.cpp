@@ -167,12 +167,12 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
   GridSearchOptions agreed = options;
   {
     double v[2] = {static_cast<double>(dense_memory_budget(options, report)),
-                   static_cast<double>(dense_threads(field, options, comm.ranks_on_node()))};
+                   static_cast<double>(dense_threads(field, options, comm.ranks_sharing_cpus()))};
     comm.allreduce_min(v);
     agreed.memory_budget = static_cast<std::uint64_t>(std::min(v[0], 1.8e19));
     agreed.threads = static_cast<int>(v[1]);
   }
-  const bool dense = uses_dense_engine(field, agreed, report, comm.size());
+  const bool dense = uses_dense_engine(field, problem, agreed, report, comm.size());
   require_dense_for_checkpoints(options, problem.dims, dense);
 
   if (dist.compare_serial) {
@@ -191,7 +191,7 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
       // that is over the budget there is no reference (rather than rank 0 failing alone, or
       // a reference from the other engine).
       const GridReport serial_plan = prepare_grid_report(problem, serial_options, field, 1);
-      if (!dense || dense_fits(field, serial_options, serial_plan, 1)) {
+      if (!dense || dense_fits(field, problem, serial_options, serial_plan, 1)) {
         const GridReport serial = solve_grid(field, problem, serial_options);
         report.serial =
             SerialReference{serial.result.status, serial.result.cost, serial.result.hops,
@@ -205,7 +205,7 @@ GridReport solve_grid_distributed(const GridProblem& problem, const GridSearchOp
     // Slabs of the dense lattice, one per rank; one rank is the serial dense engine.
     MpiSlabTransport transport(comm);
     dr.scheme = comm.size() == 1 ? "serial" : "dense_slabs";
-    run_dense(field, problem, agreed, transport, comm.ranks_on_node(), report);
+    run_dense(field, problem, agreed, transport, comm.ranks_sharing_cpus(), report);
     const dense::Figures& f = *report.dense;
     dr.per_rank.assign(f.rank_expanded.size(), {});
     for (std::size_t r = 0; r < dr.per_rank.size(); ++r) {
@@ -242,8 +242,9 @@ DistanceFieldRun distance_field_distributed(const GridProblem& asked,
   // The threads and budget every rank can afford (as solve_grid_distributed).
   const GridReport plan = prepare_grid_report(problem, options, field, comm.ranks_on_node());
   GridSearchOptions agreed = options;
-  double v[2] = {static_cast<double>(dense_memory_budget(options, plan)),
-                 static_cast<double>(distance_field_threads(field, options, comm.ranks_on_node()))};
+  double v[2] = {
+      static_cast<double>(dense_memory_budget(options, plan)),
+      static_cast<double>(distance_field_threads(field, options, comm.ranks_sharing_cpus()))};
   comm.allreduce_min(v);
   agreed.memory_budget = static_cast<std::uint64_t>(std::min(v[0], 1.8e19));
   agreed.threads = static_cast<int>(v[1]);

@@ -1,10 +1,13 @@
 #include "hpcplan/mpi/communicator.hpp"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <climits>
 #include <cstdlib>
 #include <thread>
 
+#include "hpcplan/core/cpu_set.hpp"
 #include "hpcplan/core/error.hpp"
 
 namespace hpcplan::mpi {
@@ -34,6 +37,19 @@ Communicator::Communicator(MPI_Comm comm) : comm_(comm) {
   MPI_Comm node;
   MPI_Comm_split_type(comm_, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
   MPI_Comm_size(node, &ranks_on_node_);
+  // The ranks of this node whose CPU sets overlap this one's: bound ranks (mpirun's default
+  // binding, --map-by ...:PE=n, SLURM's cgroups) share none, unbound ones share every core.
+  const CpuSet mine = CpuSet::of_this_process();
+  std::vector<std::uint64_t> all(static_cast<std::size_t>(ranks_on_node_) * CpuSet::kWords);
+  MPI_Allgather(mine.words().data(), CpuSet::kWords, MPI_UINT64_T, all.data(), CpuSet::kWords,
+                MPI_UINT64_T, node);
+  ranks_sharing_cpus_ = 0;
+  for (int r = 0; r < ranks_on_node_; ++r) {
+    std::array<std::uint64_t, CpuSet::kWords> w;
+    std::copy_n(all.begin() + static_cast<std::ptrdiff_t>(r) * CpuSet::kWords, CpuSet::kWords,
+                w.begin());
+    if (CpuSet::from_words(w).overlaps(mine)) ++ranks_sharing_cpus_;
+  }
   MPI_Comm_free(&node);
 }
 

@@ -56,8 +56,8 @@ void unpack(const std::vector<std::byte>& bytes, std::vector<V>& whole) {
 }  // namespace
 
 int distance_field_threads(const ObstacleSource& field, const GridSearchOptions& o,
-                           int ranks_sharing_memory) {
-  return dense_threads(field, o, ranks_sharing_memory);
+                           int ranks_sharing_cpus) {
+  return dense_threads(field, o, ranks_sharing_cpus);
 }
 
 std::uint64_t DistanceField::cells() const {
@@ -122,18 +122,8 @@ DistanceFieldRun distance_field(const ObstacleSource& field, const GridProblem& 
   dense::require_compiled(field.dims());
 
   const bool hops = o.algorithm == GridAlgorithm::bfs;
-  dense::Query q;
-  q.start = report.problem.start;
-  q.goal = report.problem.goal;
-  q.algorithm = hops ? dense::Algorithm::bfs : dense::Algorithm::dijkstra;
-  q.connectivity = problem.connectivity;
-  q.threads = distance_field_threads(field, o, ranks_sharing_memory);
-  q.keep_path = o.keep_path;
-  q.block_layers = o.contiguous_slabs ? 0 : o.slab_layers > 0 ? o.slab_layers : -1;
-  q.memory_budget = dense_memory_budget(o, report);
-  q.stop = Stop::after(o.time_limit_s, o.cancel);
-  if (o.stop_when) q.stop.also_when(o.stop_when);
-  if (tr.rank() == 0) q.progress_label = "hpcplan grid " + report.options.algorithm + " (field)";
+  dense::Query q = dense_query(field, problem, o, report, ranks_sharing_memory);
+  q.progress_label = tr.rank() == 0 ? "hpcplan grid " + report.options.algorithm + " (field)" : "";
   dense::Distances part;
   q.distances = &part;
   report.result.setup_ms = setup.milliseconds();

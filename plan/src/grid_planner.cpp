@@ -5,6 +5,7 @@
 #include <cmath>
 #include <thread>
 
+#include "hpcplan/core/cpu_set.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/format.hpp"
 #include "hpcplan/core/memory.hpp"
@@ -50,7 +51,7 @@ GridReport solve_grid(const ObstacleSource& field, const GridProblem& problem,
   {
     Stopwatch setup;
     GridReport report = prepare_grid_report(problem, options, field, 1);
-    const bool dense = uses_dense_engine(field, options, report, 1);
+    const bool dense = uses_dense_engine(field, problem, options, report, 1);
     require_dense_for_checkpoints(options, field.dims(), dense);
     if (dense) {
       report.result.setup_ms = setup.milliseconds();
@@ -70,16 +71,14 @@ std::uint64_t dense_memory_budget(const GridSearchOptions& options, const GridRe
   return report.options.max_states * bytes_per_state(report.options.key_words);
 }
 
-int dense_threads(const GridSearchOptions& options, int ranks_sharing_memory) {
+int dense_threads(const GridSearchOptions& options, int ranks_sharing_cpus) {
   if (options.threads > 0) return options.threads;
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  return std::max(1, cores / std::max(1, ranks_sharing_memory));
+  return std::max(1, CpuSet::of_this_process().count() / std::max(1, ranks_sharing_cpus));
 }
 
-int dense_threads(const ObstacleSource& field, const GridSearchOptions& o,
-                  int ranks_sharing_memory) {
+int dense_threads(const ObstacleSource& field, const GridSearchOptions& o, int ranks_sharing_cpus) {
   if (o.threads > 0) return o.threads;
-  const int most = dense_threads(o, ranks_sharing_memory);
+  const int most = dense_threads(o, ranks_sharing_cpus);
   double free = 1.0 - field.blocked_fraction();
   for (int a = 0; a < field.dims(); ++a) free *= field.size(a);
   const double per_level = free / std::max(1, field.extent());
@@ -87,28 +86,31 @@ int dense_threads(const ObstacleSource& field, const GridSearchOptions& o,
   return static_cast<int>(std::clamp(wanted, 1.0, static_cast<double>(std::max(1, most))));
 }
 
-namespace {
-
 dense::Query dense_query(const ObstacleSource& field, const GridProblem& problem,
                          const GridSearchOptions& o, const GridReport& report,
-                         int ranks_sharing_memory) {
+                         int ranks_sharing_cpus) {
   dense::Query q;
   q.start = report.problem.start;
   q.goal = report.problem.goal;
   q.algorithm =
       o.algorithm == GridAlgorithm::bfs ? dense::Algorithm::bfs : dense::Algorithm::dijkstra;
   q.connectivity = problem.connectivity;
-  q.threads = dense_threads(field, o, ranks_sharing_memory);
+  q.threads = dense_threads(field, o, ranks_sharing_cpus);
   q.keep_path = o.keep_path;
   q.block_layers = o.contiguous_slabs ? 0 : o.slab_layers > 0 ? o.slab_layers : -1;
   q.memory_budget = dense_memory_budget(o, report);
   q.stop = Stop::after(o.time_limit_s, o.cancel);
   if (o.stop_when) q.stop.also_when(o.stop_when);
   q.progress_label = "hpcplan grid " + report.options.algorithm + " (dense)";
+  // The job's files: the engine names each rank's (dense::rank_file).
+  q.checkpointing.path = o.checkpoint;
+  q.checkpointing.restart = o.restart;
   q.checkpointing.every_s = o.checkpoint_every_s;
   q.checkpointing.interrupted = o.interrupted;
   return q;
 }
+
+namespace {
 
 // Re-validates a returned path move by move with the lattice graph (the field formula, not the
 // dense engine's tables) and returns its length.
@@ -126,30 +128,24 @@ double validated_dense_path(const ObstacleSource& field, const GridProblem& prob
 
 namespace {
 
-// The bytes a dense run of these options would plan for, per rank.
-std::uint64_t planned_dense_bytes(const ObstacleSource& field, const GridSearchOptions& options,
-                                  const GridReport& report, int ranks) {
-  dense::Query q;
-  q.algorithm =
-      options.algorithm == GridAlgorithm::bfs ? dense::Algorithm::bfs : dense::Algorithm::dijkstra;
-  q.connectivity = parse_connectivity(report.problem.connectivity);
-  q.keep_path = options.keep_path;
-  q.threads = dense_threads(field, options, 1);
-  q.block_layers = options.contiguous_slabs  ? 0
-                   : options.slab_layers > 0 ? options.slab_layers
-                                             : -1;
-  return dense::planned_bytes(field, q, ranks);
+// The bytes a dense run of these options would plan for, per rank (the query of a process
+// that shares its node with no other rank, as the check has always assumed).
+std::uint64_t planned_dense_bytes(const ObstacleSource& field, const GridProblem& problem,
+                                  const GridSearchOptions& options, const GridReport& report,
+                                  int ranks) {
+  return dense::planned_bytes(field, dense_query(field, problem, options, report, 1), ranks);
 }
 
 }  // namespace
 
-bool dense_fits(const ObstacleSource& field, const GridSearchOptions& options,
-                const GridReport& report, int ranks) {
-  return planned_dense_bytes(field, options, report, ranks) <= dense_memory_budget(options, report);
+bool dense_fits(const ObstacleSource& field, const GridProblem& problem,
+                const GridSearchOptions& options, const GridReport& report, int ranks) {
+  return planned_dense_bytes(field, problem, options, report, ranks) <=
+         dense_memory_budget(options, report);
 }
 
-bool uses_dense_engine(const ObstacleSource& field, const GridSearchOptions& options,
-                       const GridReport& report, int ranks) {
+bool uses_dense_engine(const ObstacleSource& field, const GridProblem& problem,
+                       const GridSearchOptions& options, const GridReport& report, int ranks) {
   if (options.engine == GridEngine::sparse) return false;
   if (options.algorithm != GridAlgorithm::bfs && options.algorithm != GridAlgorithm::dijkstra)
     return false;
@@ -159,23 +155,17 @@ bool uses_dense_engine(const ObstacleSource& field, const GridSearchOptions& opt
   // every axis: for an elongated array (a 1 x 65535 line: 5.9 GB) or many short axes (3^11
   // cells: 1.4 GB) that is far more than the array. Auto takes it only while it plans at most
   // 8 bytes per cell of the array (a 512 x 512 map plans about 2 bytes per cell).
-  if (field.is_occupancy() && planned_dense_bytes(field, options, report, ranks) >
+  if (field.is_occupancy() && planned_dense_bytes(field, problem, options, report, ranks) >
                                   8 * field.occupancy().cells() + (std::uint64_t{1} << 20))
     return false;
-  return dense_fits(field, options, report, ranks);
+  return dense_fits(field, problem, options, report, ranks);
 }
 
 void run_dense(const ObstacleSource& field, const GridProblem& problem,
                const GridSearchOptions& options, dense::SlabTransport& transport,
-               int ranks_sharing_memory, GridReport& report) {
-  dense::Query q = dense_query(field, problem, options, report, ranks_sharing_memory);
+               int ranks_sharing_cpus, GridReport& report) {
+  dense::Query q = dense_query(field, problem, options, report, ranks_sharing_cpus);
   if (transport.rank() != 0) q.progress_label.clear();  // one progress line per job
-  if (!options.checkpoint.empty())
-    q.checkpointing.path =
-        dense::rank_file(options.checkpoint, transport.rank(), transport.ranks());
-  if (!options.restart.empty())
-    q.checkpointing.restart =
-        dense::rank_file(options.restart, transport.rank(), transport.ranks());
   dense::Result r = dense::search(field, q, transport);
   GridResult& out = report.result;
   out.status = r.status;

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <functional>
 #include <mutex>
 #include <set>
 #include <string>
@@ -15,6 +17,7 @@
 #include "hpcplan/dense/dense_search.hpp"
 #include "hpcplan/plan/grid_planner.hpp"
 #include "support/cancel_handshake.hpp"
+#include "support/in_process_ranks.hpp"
 
 namespace {
 
@@ -90,6 +93,67 @@ TEST(DenseThreads, EveryThreadCountGivesTheOneThreadAnswer) {
           EXPECT_GE(r.figures.threads, 1);
         }
     }
+}
+
+// The superstep driver's rank protocol with threads inside each rank: two ranks of two
+// threads each (threads of this process over the paired test transport, so ThreadSanitizer
+// sees the halo swap, the reductions and the barriers together) give the one-rank answer,
+// path and counts; and an interrupted two-rank run restarts from its two files (one per rank,
+// named by the engine) to the same answer.
+TEST(DenseThreads, TwoInProcessRanksOfTwoThreadsGiveTheOneRankAnswer) {
+  GogParams gp;
+  gp.seed = 5;
+  const GogField field(3, 28, gp);
+  const std::string file = ::testing::TempDir() + "hpcplan-dense-two-ranks";
+  for (const dense::Algorithm a : {dense::Algorithm::bfs, dense::Algorithm::dijkstra}) {
+    dense::LocalTransport local;
+    const dense::Result one = dense::search(field, corner_query(field, a, 1), local);
+    ASSERT_EQ(one.status, Status::solved);
+    auto run_two = [&](const std::function<void(dense::Query&)>& edit) {
+      test_support::InProcessRanks hub(2);
+      std::vector<dense::Result> results(2);
+      std::vector<std::string> errors(2);
+      hub.run([&](int rank) {
+        try {
+          test_support::InProcessTransport tr(hub, rank);
+          dense::Query q = corner_query(field, a, 2);
+          q.block_layers = 2;  // several blocks per rank: faces between threads and ranks
+          edit(q);
+          results[rank] = dense::search(field, q, tr);
+        } catch (const std::exception& e) {
+          errors[rank] = e.what();
+        }
+      });
+      EXPECT_EQ(errors[0] + errors[1], "");
+      EXPECT_EQ(results[0].status, results[1].status);
+      return results[0];
+    };
+    const dense::Result two = run_two([](dense::Query&) {});
+    EXPECT_EQ(two.figures.ranks, 2);
+    EXPECT_GT(two.figures.halo_bytes, 0u);
+    EXPECT_EQ(two.status, one.status);
+    EXPECT_EQ(two.cost, one.cost);
+    EXPECT_EQ(two.path, one.path);
+    EXPECT_EQ(two.counters.expanded, one.counters.expanded);
+    EXPECT_EQ(two.counters.generated, one.counters.generated);
+    EXPECT_EQ(two.figures.levels, one.figures.levels);
+    // Interrupted at its first boundary, then restarted from FILE.r0 and FILE.r1.
+    const dense::Result stopped = run_two([&](dense::Query& q) {
+      q.checkpointing.path = file;
+      q.checkpointing.interrupted = [] { return true; };
+    });
+    ASSERT_EQ(stopped.status, Status::interrupted);
+    for (const char* r : {".r0", ".r1"})
+      ASSERT_TRUE(std::filesystem::exists(file + r)) << file << r;
+    const dense::Result restarted =
+        run_two([&](dense::Query& q) { q.checkpointing.restart = file; });
+    EXPECT_EQ(restarted.status, one.status);
+    EXPECT_EQ(restarted.path, one.path);
+    EXPECT_EQ(restarted.counters.expanded, one.counters.expanded);
+    EXPECT_EQ(restarted.counters.generated, one.counters.generated);
+    std::remove((file + ".r0").c_str());
+    std::remove((file + ".r1").c_str());
+  }
 }
 
 // The run's stop condition (asked on the calling thread once per level) says the run is under

@@ -35,6 +35,10 @@ class Communicator {
   MPI_Comm handle() const { return comm_; }
   // Ranks of this job on this node (they share its memory).
   int ranks_on_node() const { return ranks_on_node_; }
+  // Ranks of this node whose CPU sets (core/cpu_set.hpp) overlap this one's, itself included:
+  // 1 for ranks mpirun or SLURM bound to cores of their own, every rank of the node for
+  // unbound ones. A rank's default thread count is its set's CPUs over this.
+  int ranks_sharing_cpus() const { return ranks_sharing_cpus_; }
 
   // A barrier that sleeps between polls instead of spinning: for ranks waiting while another
   // rank works alone (a spinning rank steals the core, or its SMT sibling, from the worker).
@@ -59,6 +63,7 @@ class Communicator {
   int rank_ = 0;
   int size_ = 1;
   int ranks_on_node_ = 1;
+  int ranks_sharing_cpus_ = 1;
 };
 
 }  // namespace hpcplan::mpi

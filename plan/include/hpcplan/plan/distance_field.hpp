@@ -54,7 +54,7 @@ GridProblem distance_field_problem(const ObstacleSource& field, const GridProble
 // The OpenMP threads of a field run: those of any dense run on the field (grid_planner.hpp's
 // dense_threads).
 int distance_field_threads(const ObstacleSource& field, const GridSearchOptions& options,
-                           int ranks_sharing_memory);
+                           int ranks_sharing_cpus);
 
 // Serial (one process, the options' OpenMP threads).
 DistanceFieldRun distance_field(const GridProblem& problem, const GridSearchOptions& options);

@@ -86,11 +86,11 @@ struct CSpaceReport {
   std::string moves;
   double resolution = 0.0;
   std::vector<bool> periodic;
-  std::vector<double> start, goal;                // as asked, in the space's coordinates
-  std::vector<double> start_vertex, goal_vertex;  // where they joined the lattice
+  std::vector<double> start, goal;                       // as asked, in the space's coordinates
+  std::vector<double> start_vertex, goal_vertex;         // where they joined the lattice
   double start_connection = 0.0, goal_connection = 0.0;  // those motions' lengths
-  std::string unconnected;                        // "start" or "goal" when one joined nothing
-  std::vector<std::vector<double>> path;          // keep_path: start, vertices, goal
+  std::string unconnected;                // "start" or "goal" when one joined nothing
+  std::vector<std::vector<double>> path;  // keep_path: start, vertices, goal
   bool path_rechecked = false;
   std::uint64_t batches = 0;  // batches of states tested (this rank's, or the sum)
 };
@@ -131,13 +131,15 @@ GridReport prepare_grid_report(const GridProblem& problem, const GridSearchOptio
                                const ObstacleSource& field, int ranks_sharing_memory);
 // The dense engine: its memory budget per process (--memory-budget, else what max_states buys
 // the sparse engine), its OpenMP threads per process (--threads, else the process's share of
-// the cores), whether `ranks` slabs fit the budget, whether it runs this query (--engine
+// the CPUs it may run on: its CPU set's count (core/cpu_set.hpp) over `ranks_sharing_cpus`,
+// the ranks of its node whose sets overlap its own, mpi::Communicator::ranks_sharing_cpus; 1
+// for a serial run), whether `ranks` slabs fit the budget, whether it runs this query (--engine
 // dense, or auto for BFS and Dijkstra when they fit and the dimension is compiled: see
 // dense::compiled_dims), and a run on this process's slab,
 // collective over the transport, filling the report (its path re-validated move by move with
 // the lattice graph).
 std::uint64_t dense_memory_budget(const GridSearchOptions& options, const GridReport& report);
-int dense_threads(const GridSearchOptions& options, int ranks_sharing_memory);
+int dense_threads(const GridSearchOptions& options, int ranks_sharing_cpus);
 // The threads a dense run on `field` uses: --threads when given; else one per
 // kDenseStatesPerThreadLevel states of the average level (the free states over the extent: a
 // wavefront crosses the lattice in about `extent` levels), at least one and at most
@@ -148,13 +150,20 @@ int dense_threads(const GridSearchOptions& options, int ranks_sharing_memory);
 // two). Large lattices (3D and up, GOG's high dimensions) keep every core.
 inline constexpr double kDenseStatesPerThreadLevel = 32768;
 int dense_threads(const ObstacleSource& field, const GridSearchOptions& options,
-                  int ranks_sharing_memory);
-bool dense_fits(const ObstacleSource& field, const GridSearchOptions& options, const GridReport& report,
-                int ranks);
-bool uses_dense_engine(const ObstacleSource& field, const GridSearchOptions& options,
-                       const GridReport& report, int ranks);
-void run_dense(const ObstacleSource& field, const GridProblem& problem, const GridSearchOptions& options,
-               dense::SlabTransport& transport, int ranks_sharing_memory, GridReport& report);
+                  int ranks_sharing_cpus);
+// The dense engine's query for a prepared report (its resolved start and goal), built in this
+// one place for every dense run (point queries, distance fields, the budget check): the
+// checkpoint files are the job's, which the engine names per rank.
+dense::Query dense_query(const ObstacleSource& field, const GridProblem& problem,
+                         const GridSearchOptions& options, const GridReport& report,
+                         int ranks_sharing_cpus);
+bool dense_fits(const ObstacleSource& field, const GridProblem& problem,
+                const GridSearchOptions& options, const GridReport& report, int ranks);
+bool uses_dense_engine(const ObstacleSource& field, const GridProblem& problem,
+                       const GridSearchOptions& options, const GridReport& report, int ranks);
+void run_dense(const ObstacleSource& field, const GridProblem& problem,
+               const GridSearchOptions& options, dense::SlabTransport& transport,
+               int ranks_sharing_cpus, GridReport& report);
 
 // Derives quality from cost once the search has filled the result.
 void finish_grid_report(GridReport& report);
