@@ -14,7 +14,8 @@ namespace detail {
 namespace {
 
 constexpr std::string_view kMagic = "hpcplan dense lattice checkpoint\n";
-constexpr std::uint32_t kFormat = 1;
+// 2: the BFS saves its store of three words a tile and active bitmaps (was: codes and lists).
+constexpr std::uint32_t kFormat = 2;
 constexpr std::string_view kKind =
     "an hpcplan dense lattice checkpoint (hpcplan grid --checkpoint)";
 

@@ -2,13 +2,18 @@
 // Level-synchronous BFS on the dense lattice (dense_search.hpp describes the scheme), as the
 // superstep driver's algorithm (superstep.hpp): one step is one level.
 //
-// Per level, every thread expands its frontier entries (tiles of its blocks with bits of the
-// current level): targets in the entry's own block are applied at once (bits not yet reached
-// get the next level's code; the first new bits of a tile put it on the next frontier, with the
-// tile's reached bits before the level, so the next level's frontier word is "reached now, not
-// then"), targets in the next block either side go to an outbox for its owner. After the
-// driver's barrier (and halo swap) each thread applies what the other threads and ranks sent
-// it. The level's report: states reached, next frontier entries, the goal reached.
+// The store holds three words per tile: the 2-bit level code of its states (0: not reached,
+// else level mod 3 + 1; the walk back reads it) and the word of states reached but not yet
+// expanded (`pending`). The frontier is an active set: one bit per tile, per thread, for the
+// tiles with pending states, in two bitmaps by level parity. A level sweeps the bits of the
+// current bitmap in tile order (so neighbouring tiles are read as streams, not at random),
+// expands each tile's states of this level (pending, with this level's code: bits a tile
+// received earlier in this same level carry the next level's code and stay pending), and
+// clears its bit; a target's new states get the next level's code, join its pending word and
+// set its bit in the next bitmap. No tile without pending states is touched, and no list of
+// entries is kept: the work and the memory traffic of a level are those of its frontier's
+// tiles and their neighbours. Targets in the next block either side that another thread or
+// rank holds go to an outbox, applied by their owner after the driver's barrier.
 #include <limits>
 
 #include "engine_common.hpp"
@@ -34,13 +39,17 @@ class LevelBfs final : public SuperstepAlgorithm {
         free_states_(free_states) {
     for (int a = 0; a < D; ++a) stride_[a] = layout.stride(a);
     const int T = slabs_.threads;
-    codes_ = ZeroedWords(2 * slabs_.store_tiles);
+    store_ = ZeroedWords(kWordsPerTile * slabs_.store_tiles);
     threads_.resize(T);
     for (int t = 0; t < T; ++t) {
-      threads_[t].marks = ZeroedWords((slabs_.thread_tiles[t] + 63) / 64);
+      for (ZeroedWords& active : threads_[t].active)
+        active = ZeroedWords((slabs_.thread_tiles[t] + 63) / 64);
       threads_[t].out_local.resize(T);
       threads_[t].id = t;
     }
+    for (std::size_t j = 0; j < slabs_.blocks.size(); ++j)
+      if (slabs_.blocks[j].rank == slabs_.rank)
+        threads_[slabs_.blocks[j].thread].blocks.push_back(static_cast<int>(j));
     inbox_.resize(T);
     goal_tile_ = layout_.tile_of(q_.goal);
     goal_bit_ = Word{1} << layout_.bit_of(q_.goal);
@@ -48,17 +57,18 @@ class LevelBfs final : public SuperstepAlgorithm {
     if (field_run_) distances_.init(field_, layout_, slabs_, *q_.distances, q_.distances->levels);
   }
 
-  // Bytes of the store and marks for `tiles` tiles.
-  static std::uint64_t store_bytes(std::uint64_t tiles) { return tiles * 16 + tiles / 8 + 64; }
+  // Bytes of the store and the two active bitmaps for `tiles` tiles.
+  static std::uint64_t store_bytes(std::uint64_t tiles) {
+    return tiles * 8 * kWordsPerTile + 2 * (tiles / 8 + 64);
+  }
 
   Totals start() override {
     const std::uint64_t start_tile = layout_.tile_of(q_.start);
     if (slabs_.of_tile(start_tile).rank == slabs_.rank) {
       const Block& b = slabs_.of_tile(start_tile);
-      *code_words(b, start_tile) |= Word{1} << layout_.bit_of(q_.start);  // level 0: code 1
-      Thread& th = threads_[b.thread];
-      mark(th, b, start_tile);
-      th.cur.push_back({start_tile, 0});
+      Word* w = tile_words(b, start_tile);
+      w[0] = w[2] = Word{1} << layout_.bit_of(q_.start);  // level 0: code 1, pending
+      set_active(threads_[b.thread].active[0], b, start_tile);
     }
     Totals t;
     t.reached = 1;
@@ -70,43 +80,60 @@ class LevelBfs final : public SuperstepAlgorithm {
   // A distance field settles everything reachable whatever the goal.
   bool solved_at_start() const override { return q_.start == q_.goal && !field_run_; }
   std::uint64_t fixed_bytes() const override {
-    return codes_.bytes() + windows_.bytes() + marks_bytes();
+    std::uint64_t bitmaps = 0;
+    for (const Thread& t : threads_) bitmaps += t.active[0].bytes() + t.active[1].bytes();
+    return store_.bytes() + windows_.bytes() + bitmaps;
   }
 
   void work(int id, const Superstep& step, ThreadControl& ctl) override {
     Thread& me = threads_[id];
-    const Code next = next_code(step);
-    // The frontier's words: reached now, not before the level that reached them.
-    for (Entry& e : me.cur) {
-      const Block& b = slabs_.of_tile(e.tile);
-      const Word* c = code_words(b, e.tile);
-      e.bits = (c[0] | c[1]) & ~e.bits;
-      unmark(me, b, e.tile);
-      // These are the states of this level: their distance.
-      if (field_run_)
-        distances_.write(layout_, slabs_.block_index_of_tile(e.tile), e.tile, e.bits,
-                         static_cast<std::int32_t>(step.index));
-    }
+    const Code now = code_of(step.index), next = code_of(step.index + 1);
+    ZeroedWords& active = me.active[step.index & 1];
+    ZeroedWords& next_active = me.active[(step.index + 1) & 1];
+    const auto level = static_cast<std::int32_t>(step.index);
     std::size_t n = 0;
-    for (const Entry& e : me.cur) {
-      if ((++n & 1023) == 0 && ctl.poll()) break;
-      expand(me, e, next.c0, next.c1);
+    for (const int j : me.blocks) {
+      const Block& b = slabs_.blocks[j];
+      Word* const words = block_words(b);
+      const std::uint64_t first = b.mark, last = b.mark + (b.hi - b.lo);  // bits in `active`
+      for (std::uint64_t w = first >> 6; w <= (last - 1) >> 6 && first < last; ++w) {
+        // This block's bits of the word (a word may hold the end of one block and the start
+        // of the next, which another pass over the thread's blocks takes).
+        Word bits = active[w];
+        if (!bits) continue;
+        const std::uint64_t lo = w << 6;
+        if (lo < first) bits &= ~Word{0} << (first - lo);
+        if (last - lo < 64) bits &= (Word{1} << (last - lo)) - 1;
+        active[w] &= ~bits;
+        for (; bits; bits &= bits - 1) {
+          const std::uint64_t tile = b.lo + (lo + std::countr_zero(bits) - first);
+          Word* const c = words + kWordsPerTile * tile;
+          // This level's states: pending, with this level's code.
+          const Word f = c[2] & (c[0] ^ now.not0) & (c[1] ^ now.not1);
+          if (!f) continue;
+          c[2] &= ~f;
+          if (field_run_) distances_.write(layout_, j, tile, f, level);
+          expand(me, j, b, tile, f, next, next_active);
+        }
+        if ((++n & 15) == 0 && ctl.poll()) return;
+      }
     }
   }
   void receive(int id, const Superstep& step) override {
     Thread& me = threads_[id];
-    const Code next = next_code(step);
+    const Code next = code_of(step.index + 1);
+    ZeroedWords& next_active = me.active[(step.index + 1) & 1];
     for (const Thread& t : threads_)
       for (const Entry& e : t.out_local[id])
-        apply(me, slabs_.of_tile(e.tile), e.tile, e.bits, next.c0, next.c1);
+        apply(me, slabs_.of_tile(e.tile), e.tile, e.bits, next, next_active);
     for (const Entry& e : inbox_[id])
-      apply(me, slabs_.of_tile(e.tile), e.tile, e.bits, next.c0, next.c1);
+      apply(me, slabs_.of_tile(e.tile), e.tile, e.bits, next, next_active);
   }
   StepReport report(int id) override {
     const Thread& me = threads_[id];
     StepReport r;
     r.fresh = me.fresh;
-    r.pending = me.next.size();
+    r.pending = me.fresh;  // the next level's states
     r.list_bytes = list_bytes(id);
     r.goal = me.goal_hit;
     return r;
@@ -118,8 +145,6 @@ class LevelBfs final : public SuperstepAlgorithm {
     me.out_up.clear();
     for (auto& box : me.out_local) box.clear();
     me.fresh = 0;
-    std::swap(me.cur, me.next);
-    me.next.clear();
   }
   void send_halo(std::vector<std::byte>& down, std::vector<std::byte>& up) override {
     halo_.send(threads_, down, up);
@@ -154,17 +179,19 @@ class LevelBfs final : public SuperstepAlgorithm {
     }
   }
 
-  // The state after `totals.steps` levels (dense_checkpoint.hpp).
+  // The state after `totals.steps` levels (dense_checkpoint.hpp): the store (codes and
+  // pending words) and each thread's counts and active bitmap for the next level.
   void save(checkpoint::Writer& w, const Totals& totals) const override {
     w.put(totals.steps);
     w.put(totals.reached);
     w.put(totals.peak_fresh);
     w.put(totals.list_peak);
-    w.put_array(std::span<const Word>(codes_.data(), codes_.size()));
+    w.put_array(std::span<const Word>(store_.data(), store_.size()));
     for (const Thread& t : threads_) {
       w.put(t.expanded);
       w.put(t.generated);
-      w.put_array(t.cur);  // the next level's frontier, with the bits before this level
+      const ZeroedWords& active = t.active[totals.steps & 1];
+      w.put_array(std::span<const Word>(active.data(), active.size()));
     }
   }
 
@@ -181,112 +208,102 @@ class LevelBfs final : public SuperstepAlgorithm {
     // back round the lattice for as many steps (found by fuzz_grid_checkpoint).
     if (level >= free_states_ || reached > free_states_ || peak > reached)
       r.fail("holds counts this lattice cannot have (damaged)");
-    r.get_array(std::span<Word>(codes_.data(), codes_.size()));
+    r.get_array(std::span<Word>(store_.data(), store_.size()));
     for (Thread& t : threads_) {
       t.expanded = r.get<std::uint64_t>();
       t.generated = r.get<std::uint64_t>();
-      r.get_array(t.cur);
-      for (const Entry& e : t.cur) {
-        if (e.tile >= layout_.tile_count() || slabs_.of_tile(e.tile).rank != slabs_.rank ||
-            slabs_.of_tile(e.tile).thread != t.id)
-          r.fail("lists a frontier tile this thread does not hold (damaged)");
-      }
-      // (The frontier's marks need no restoring: every level starts by clearing them.)
+      ZeroedWords& active = t.active[level & 1];
+      r.get_array(std::span<Word>(active.data(), active.size()));
+      // Bits past the thread's tiles would name tiles it does not hold.
+      const std::uint64_t tiles = slabs_.thread_tiles[t.id];
+      if (tiles % 64 && active.size() && (active[active.size() - 1] >> (tiles % 64)))
+        r.fail("lists a frontier tile this thread does not hold (damaged)");
     }
   }
 
  private:
-  struct alignas(64) Thread {  // a cache line apart: each thread writes its own counters
-    std::vector<Entry> cur, next;
-    std::vector<Entry> out_down, out_up;        // to the ranks below and above
+  struct alignas(64) Thread {             // a cache line apart: each thread writes its own counters
+    std::vector<int> blocks;              // the blocks it owns, in tile order
+    ZeroedWords active[2];                // tiles with pending states, by level parity
+    std::vector<Entry> out_down, out_up;  // to the ranks below and above
     std::vector<std::vector<Entry>> out_local;  // to this rank's threads
-    ZeroedWords marks;
     int id = 0;
     std::uint64_t expanded = 0, generated = 0, fresh = 0;
     bool goal_hit = false;
   };
 
-  // The 2-bit code of the level a step reaches (the step's index + 1, mod 3, + 1), as masks.
+  // Words per tile in the store: the level code's two bits, and the pending states.
+  static constexpr int kWordsPerTile = 3;
+
+  // A level's 2-bit code (level mod 3 + 1) as masks: the words a state's code bits equal, and
+  // their complements (c ^ not is all ones where the bit matches).
   struct Code {
-    Word c0, c1;
+    Word c0, c1, not0, not1;
   };
-  static Code next_code(const Superstep& step) {
-    const int code = static_cast<int>((step.index + 1) % 3) + 1;
-    return {code & 1 ? ~Word{0} : 0, code & 2 ? ~Word{0} : 0};
+  static Code code_of(std::uint64_t level) {
+    const int code = static_cast<int>(level % 3) + 1;
+    const Word c0 = code & 1 ? ~Word{0} : 0, c1 = code & 2 ? ~Word{0} : 0;
+    return {c0, c1, ~c0, ~c1};
   }
 
-  Word* code_words(const Block& b, std::uint64_t tile) {
-    return codes_.data() + 2 * (b.store + (tile - b.lo));
+  // The store's words of tile `tile` of block b, and of block b as if indexed by global tile.
+  Word* tile_words(const Block& b, std::uint64_t tile) {
+    return store_.data() + kWordsPerTile * (b.store + (tile - b.lo));
   }
-  // The store's words of block b as if indexed by global tile (2 words a tile).
-  Word* block_codes(const Block& b) { return codes_.data() + 2 * b.store - 2 * b.lo; }
-  const Word* code_words(const Block& b, std::uint64_t tile) const {
-    return codes_.data() + 2 * (b.store + (tile - b.lo));
+  const Word* tile_words(const Block& b, std::uint64_t tile) const {
+    return store_.data() + kWordsPerTile * (b.store + (tile - b.lo));
   }
-  static void mark(Thread& t, const Block& b, std::uint64_t tile) {
+  Word* block_words(const Block& b) {
+    return store_.data() + kWordsPerTile * b.store - kWordsPerTile * b.lo;
+  }
+  static void set_active(ZeroedWords& active, const Block& b, std::uint64_t tile) {
     const std::uint64_t i = b.mark + (tile - b.lo);
-    t.marks[i >> 6] |= Word{1} << (i & 63);
-  }
-  static void unmark(Thread& t, const Block& b, std::uint64_t tile) {
-    const std::uint64_t i = b.mark + (tile - b.lo);
-    t.marks[i >> 6] &= ~(Word{1} << (i & 63));
-  }
-  std::uint64_t marks_bytes() const {
-    std::uint64_t b = 0;
-    for (const Thread& t : threads_) b += t.marks.bytes();
-    return b;
+    active[i >> 6] |= Word{1} << (i & 63);
   }
   static std::uint64_t list_bytes(const Thread& t) {
-    std::size_t n =
-        t.cur.capacity() + t.next.capacity() + t.out_down.capacity() + t.out_up.capacity();
+    std::size_t n = t.out_down.capacity() + t.out_up.capacity();
     for (const auto& box : t.out_local) n += box.capacity();
     return n * sizeof(Entry);
   }
 
   // Bits reaching tile u of block b, which this thread owns.
   [[gnu::always_inline]] inline void apply(Thread& me, const Block& b, std::uint64_t u, Word bits,
-                                           Word c0, Word c1) {
-    apply_at(me, b, block_codes(b) + 2 * u, u, bits, c0, c1);
+                                           const Code& next, ZeroedWords& next_active) {
+    apply_at(me, b, block_words(b) + kWordsPerTile * u, u, bits, next, next_active);
   }
   [[gnu::always_inline]] inline void apply_at(Thread& me, const Block& b, Word* c, std::uint64_t u,
-                                              Word bits, Word c0, Word c1) {
-    const Word old = c[0] | c[1];
-    const Word fresh = bits & ~old;
+                                              Word bits, const Code& next,
+                                              ZeroedWords& next_active) {
+    const Word fresh = bits & ~(c[0] | c[1]);
     if (!fresh) return;
-    const std::uint64_t i = b.mark + (u - b.lo);
-    Word& mk = me.marks[i >> 6];
-    const Word mb = Word{1} << (i & 63);
-    if (!(mk & mb)) {
-      mk |= mb;
-      me.next.push_back({u, old});
-    }
-    c[0] |= fresh & c0;
-    c[1] |= fresh & c1;
+    c[0] |= fresh & next.c0;
+    c[1] |= fresh & next.c1;
+    c[2] |= fresh;
+    set_active(next_active, b, u);
     me.fresh += static_cast<std::uint64_t>(std::popcount(fresh));
     if (u == goal_tile_ && (fresh & goal_bit_)) me.goal_hit = true;
   }
 
-  [[gnu::always_inline]] inline void expand(Thread& me, const Entry& e, Word c0, Word c1) {
+  [[gnu::always_inline]] inline void expand(Thread& me, int j, const Block& b, std::uint64_t tile,
+                                            Word f, const Code& next, ZeroedWords& next_active) {
     int t[kMaxDims];
-    layout_.tile_coords(e.tile, t);
+    layout_.tile_coords(tile, t);
     FreeWindows::At at;
     windows_.locate(t, at);
-    me.expanded += static_cast<std::uint64_t>(std::popcount(e.bits));
-    const int j = slabs_.layer_block[t[D - 1]];
-    const Block& b = slabs_.blocks[j];
-    Word* const base = block_codes(b) + 2 * e.tile;  // the source tile's words
-    const std::uint64_t rel = e.tile - b.lo, span = b.hi - b.lo;
+    me.expanded += static_cast<std::uint64_t>(std::popcount(f));
+    Word* const base = block_words(b) + kWordsPerTile * tile;  // the source tile's words
+    const std::uint64_t rel = tile - b.lo, span = b.hi - b.lo;
     me.generated += kernel_.template expand<false>(
-        e.bits, at, windows_.stride(),
+        f, at, windows_.stride(),
         stride_.data(), [&](std::int64_t delta, Word bits, int) __attribute__((always_inline)) {
-          const std::uint64_t u = e.tile + static_cast<std::uint64_t>(delta);
+          const std::uint64_t u = tile + static_cast<std::uint64_t>(delta);
           if (rel + static_cast<std::uint64_t>(delta) < span)  // inside the block (unsigned)
-            return apply_at(me, b, base + 2 * delta, u, bits, c0, c1);
+            return apply_at(me, b, base + kWordsPerTile * delta, u, bits, next, next_active);
           // The next block down or up (a move crosses one layer at most).
           const int to = u < b.lo ? j - 1 : j + 1;
           const Block& nb = slabs_.blocks[to];
           if (nb.rank == slabs_.rank && nb.thread == me.id)
-            apply(me, nb, u, bits, c0, c1);  // this thread's too: no one else writes it
+            apply(me, nb, u, bits, next, next_active);  // this thread's too: no one else writes it
           else if (nb.rank == slabs_.rank)
             me.out_local[nb.thread].push_back({u, bits});
           else
@@ -298,7 +315,7 @@ class LevelBfs final : public SuperstepAlgorithm {
   int code_at(const int* c) const {
     const std::uint64_t tile = layout_.tile_of(std::span<const int>(c, D));
     const int bit = layout_.bit_of(std::span<const int>(c, D));
-    const Word* w = code_words(slabs_.of_tile(tile), tile);
+    const Word* w = tile_words(slabs_.of_tile(tile), tile);
     return static_cast<int>((w[0] >> bit) & 1) | static_cast<int>(((w[1] >> bit) & 1) << 1);
   }
 
@@ -345,7 +362,7 @@ class LevelBfs final : public SuperstepAlgorithm {
   std::uint64_t free_states_ = 0;
   bool field_run_ = false;  // a distance field (Query::distances)
   std::array<std::int64_t, kMaxDims> stride_{};
-  ZeroedWords codes_;
+  ZeroedWords store_;  // kWordsPerTile words per tile of this rank's blocks
   std::vector<Thread> threads_;
   std::vector<std::vector<Entry>> inbox_;  // per thread: what the neighbouring ranks sent it
   HaloSwap<Entry> halo_;
