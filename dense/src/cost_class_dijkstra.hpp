@@ -122,6 +122,7 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
           stopped = true;
           break;
         }
+        ++me.taken;
         const Block& b = slabs_.of_tile(e.tile);
         Word& s = settled_[b.store + (e.tile - b.lo)];
         const Word fresh = e.bits & ~s;
@@ -158,6 +159,8 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
     r.list_bytes = list_bytes(me);
     if (!me.pending.empty()) r.next_key = me.pending.begin()->first.value();
     r.goal = me.goal_hit;
+    r.active = me.taken;
+    me.taken = 0;
     return r;
   }
   std::uint64_t list_bytes(int id) const override { return list_bytes(threads_[id]); }
@@ -298,6 +301,7 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
     std::uint64_t settled = 0, generated = 0, reported = 0;
     bool goal_hit = false;
     ClassKey goal_key;
+    std::uint64_t taken = 0;  // class entries taken in this bucket
 
     std::uint64_t settled_now() {
       const std::uint64_t d = settled - reported;

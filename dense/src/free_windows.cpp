@@ -157,8 +157,9 @@ void FreeWindows::build_occupancy(const OccupancyGrid& grid, const TileLayout& l
   const int dims = layout.dims(), k = layout.in_tile_axes();
   const std::uint64_t n = padded_positions(layout);
   if (n == 0)
-    throw InputError("the occupancy grid is too large for the dense engine's window table; use "
-                     "--engine sparse");
+    throw InputError(
+        "the occupancy grid is too large for the dense engine's window table; use "
+        "--engine sparse");
   for (int a = 0; a < dims; ++a)
     padded_stride_[a] = a == 0 ? 1 : padded_stride_[a - 1] * (layout.tiles(a - 1) + 2);
   // Each tile's own free mask, over the padded grid (zero outside).
@@ -202,7 +203,8 @@ void FreeWindows::build_occupancy(const OccupancyGrid& grid, const TileLayout& l
       const int o0 = w % 3 - 1, o1 = w / 3 - 1;
       if (k == 1 && o1 != 0) continue;
       const Word near = shift_x(own[pos], own[pos + o0 * s0], o0, k);
-      const Word far = o1 == 0 ? 0 : shift_x(own[pos + o1 * s1], own[pos + o0 * s0 + o1 * s1], o0, k);
+      const Word far =
+          o1 == 0 ? 0 : shift_x(own[pos + o1 * s1], own[pos + o0 * s0 + o1 * s1], o0, k);
       out[w] = k == 2 ? shift_y(near, far, o1) : near;
     }
   }

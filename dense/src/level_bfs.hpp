@@ -111,6 +111,7 @@ class LevelBfs final : public SuperstepAlgorithm {
           // This level's states: pending, with this level's code.
           const Word f = c[2] & (c[0] ^ now.not0) & (c[1] ^ now.not1);
           if (!f) continue;
+          ++me.active_now;
           c[2] &= ~f;
           if (field_run_) distances_.write(layout_, j, tile, f, level);
           expand(me, j, b, tile, f, next, next_active);
@@ -134,6 +135,7 @@ class LevelBfs final : public SuperstepAlgorithm {
     StepReport r;
     r.fresh = me.fresh;
     r.pending = me.fresh;  // the next level's states
+    r.active = me.active_now;
     r.list_bytes = list_bytes(id);
     r.goal = me.goal_hit;
     return r;
@@ -145,6 +147,7 @@ class LevelBfs final : public SuperstepAlgorithm {
     me.out_up.clear();
     for (auto& box : me.out_local) box.clear();
     me.fresh = 0;
+    me.active_now = 0;
   }
   void send_halo(std::vector<std::byte>& down, std::vector<std::byte>& up) override {
     halo_.send(threads_, down, up);
@@ -229,6 +232,7 @@ class LevelBfs final : public SuperstepAlgorithm {
     std::vector<std::vector<Entry>> out_local;  // to this rank's threads
     int id = 0;
     std::uint64_t expanded = 0, generated = 0, fresh = 0;
+    std::uint64_t active_now = 0;  // tiles swept with states of this level
     bool goal_hit = false;
   };
 

@@ -48,6 +48,8 @@ struct StepReport {
   std::uint64_t fresh = 0;       // states this step reached (BFS) or settled (Dijkstra)
   std::uint64_t pending = 0;     // entries left for later steps (0 on every thread: exhausted)
   std::uint64_t list_bytes = 0;  // its lists' memory
+  std::uint64_t active = 0;      // tiles it worked on (BFS: swept with states of the level;
+                                 // Dijkstra: class entries taken)
   double next_key = std::numeric_limits<double>::infinity();  // smallest pending key
   bool goal = false;                                          // it reached the goal
 };

@@ -42,6 +42,7 @@ Decision combine(const std::vector<DriverThread>& threads, int slot) {
     d.sum.fresh += p.fresh;
     d.sum.pending += p.pending;
     d.sum.list_bytes += p.list_bytes;
+    d.sum.active += p.active;
     d.sum.next_key = std::min(d.sum.next_key, p.next_key);
     d.sum.goal = d.sum.goal || p.goal;
     d.halt.merge(t.published_halt[slot]);
@@ -53,7 +54,7 @@ Decision combine(const std::vector<DriverThread>& threads, int slot) {
 // The ranks' decision from this rank's: sums, the least key, and the most severe halt. A
 // failing reduction is a failure of this rank.
 void reduce_over_ranks(SlabTransport& tr, Decision& d) {
-  std::uint64_t sums[2] = {d.sum.fresh, d.sum.pending};
+  std::uint64_t sums[3] = {d.sum.fresh, d.sum.pending, d.sum.active};
   std::uint64_t maxes[3] = {d.sum.goal ? 1u : 0u, d.halt.severity(),
                             static_cast<std::uint64_t>(d.save)};
   tr.sum(sums);
@@ -61,6 +62,7 @@ void reduce_over_ranks(SlabTransport& tr, Decision& d) {
   tr.min(std::span<double>(&d.sum.next_key, 1));
   d.sum.fresh = sums[0];
   d.sum.pending = sums[1];
+  d.sum.active = sums[2];
   d.sum.goal = maxes[0] != 0;
   d.halt = Halt::of_severity(maxes[1]);
   d.save = static_cast<int>(maxes[2]);
@@ -153,6 +155,8 @@ Result run_supersteps(SuperstepAlgorithm& alg, const ObstacleSource& field, cons
   // hold up the others.
   const bool alone = tr.ranks() == 1;
   Decision shared;  // the ranks' decision, from the master thread (not alone)
+  // Tiles worked on in each step, over every rank (from the resumed step on after a restart).
+  std::vector<std::uint64_t> step_active;
 #pragma omp parallel num_threads(T) if (T > 1)
   {
     const int id = omp_get_thread_num();
@@ -234,6 +238,7 @@ Result run_supersteps(SuperstepAlgorithm& alg, const ObstacleSource& field, cons
           totals.peak_fresh = std::max(totals.peak_fresh, d.sum.fresh);
           totals.peak_pending = std::max(totals.peak_pending, d.sum.pending);
           totals.list_peak = std::max(totals.list_peak, d.sum.list_bytes);
+          step_active.push_back(d.sum.active);
           if (d.sum.goal && !totals.goal_seen) {
             totals.goal_seen = true;
             totals.goal_step = step.index;
@@ -291,6 +296,8 @@ Result run_supersteps(SuperstepAlgorithm& alg, const ObstacleSource& field, cons
   k.expanded = local[0];
   k.generated = local[1];
   res.figures.bytes_needed = fixed;
+  res.figures.step_active_tiles = std::move(step_active);
+  for (std::uint64_t a : res.figures.step_active_tiles) res.figures.active_tiles += a;
   std::uint64_t bytes[2] = {fixed + totals.list_peak, fixed + totals.list_peak};
   tr.max(std::span<std::uint64_t>(bytes, 1));
   tr.sum(std::span<std::uint64_t>(bytes + 1, 1));

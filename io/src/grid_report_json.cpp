@@ -86,6 +86,8 @@ nlohmann::json dense_json(const dense::Figures& f) {
   d["bytes_total"] = f.bytes_total;
   d["levels"] = f.levels;
   d["buckets"] = f.buckets;
+  d["active_tiles"] = f.active_tiles;
+  d["step_active_tiles"] = f.step_active_tiles;
   d["threads"] = f.threads;
   d["block_layers"] = f.block_layers;
   d["blocks"] = f.blocks;
@@ -279,6 +281,13 @@ std::string to_summary(const GridReport& report) {
                   op.algorithm == "bfs" ? "levels" : "cost classes", f.threads,
                   format_bytes(f.bytes_per_rank).c_str(), static_cast<double>(f.reached),
                   static_cast<double>(f.free_states));
+    o << line;
+    std::snprintf(
+        line, sizeof line,
+        "  active     %llu tile visits of %llu tiles (%.3g per state reached), %d "
+        "rank(s) x %d thread(s)\n",
+        static_cast<unsigned long long>(f.active_tiles), static_cast<unsigned long long>(f.tiles),
+        f.reached ? static_cast<double>(f.active_tiles) / f.reached : 0.0, f.ranks, f.threads);
     o << line;
   }
   std::snprintf(line, sizeof line, "  time       %.3f ms search, %.3f ms set-up\n",

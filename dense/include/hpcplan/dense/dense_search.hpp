@@ -95,6 +95,12 @@ struct Figures {
   std::uint64_t table_bytes = 0;     // of which the window table (every rank holds one)
   std::uint64_t levels = 0;          // BFS levels, or the Dijkstra cost classes processed
   std::uint64_t buckets = 0;         // Dijkstra buckets (exchanges)
+  // The active set: tiles worked on in each step (BFS level: tiles swept with states of the
+  // level; Dijkstra bucket: class entries taken), over every rank, and their sum. A BFS tile
+  // moves 3 words of store (its level code and pending states) in and out per visit: the
+  // engine's traffic floor is about active_tiles x 48 bytes (bench/dense_floor.py).
+  std::vector<std::uint64_t> step_active_tiles;
+  std::uint64_t active_tiles = 0;
   int threads = 1;
   int ranks = 1;
   int block_layers = 0;             // layers per dealt block; 0: contiguous slabs
