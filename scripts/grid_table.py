@@ -1,6 +1,9 @@
 #!/usr/bin/env python3
 """Reads `hpcplan grid --json` objects (one per line) on stdin and prints a table.
 
+The "rank x thr" column is the ranks times each rank's threads (the dense engine's OpenMP
+threads; one for the other engines).
+
 Distributed runs add the scheme, the workload deviation (max - min share of expansions,
 seed 002 Table IV), messages sent, and, with --compare-serial, the serial cost, search
 overhead and speedup measured in the same job."""
@@ -8,7 +11,7 @@ import json
 import sys
 
 rows = [json.loads(line) for line in sys.stdin if line.strip()]
-header = (f"{'world':>17} {'d':>3} {'extent':>6} {'algo':>8} {'ranks':>5} {'scheme':>10} {'status':>9} {'cost':>9} {'quality':>7} "
+header = (f"{'world':>17} {'d':>3} {'extent':>6} {'algo':>8} {'rank x thr':>10} {'scheme':>10} {'status':>9} {'cost':>9} {'quality':>7} "
           f"{'expanded':>9} {'time ms':>8} {'dev %':>6} {'msgs':>6} {'serial':>9} {'overhead':>8} {'speedup':>7}")
 print(header)
 print("-" * len(header))
@@ -23,7 +26,10 @@ for r in rows:
     overhead = f"{ref['search_overhead']:.3f}" if ref and ref["search_overhead"] is not None else "-"
     speedup = f"{ref['speedup']:.2f}x" if ref and ref["speedup"] is not None else "-"
     world = r.get("world", r.get("obstacles", "gog"))
-    print(f"{world:>17} {r['dims']:>3} {r['extent']:>6} {r['algo']:>8} {r['ranks']:>5} {r['scheme']:>10} {r['status']:>9} {cost:>9} "
+    # Processes x threads each: the dense engine's OpenMP threads per rank (the rank's share
+    # of its CPU set by default), one for the other engines.
+    procs = f"{r['ranks']}x{r['dense']['threads'] if r.get('dense') else 1}"
+    print(f"{world:>17} {r['dims']:>3} {r['extent']:>6} {r['algo']:>8} {procs:>10} {r['scheme']:>10} {r['status']:>9} {cost:>9} "
           f"{quality:>7} {r['expanded']:>9} {r['time_ms']:>8.2f} {dev:>6} {msgs:>6} {serial:>9} "
           f"{overhead:>8} {speedup:>7}")
 if any(r.get("serial_reference") for r in rows):
