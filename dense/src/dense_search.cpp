@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "engine_dims.hpp"
+#include "hpcplan/core/cpu_set.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/format.hpp"
 
@@ -67,6 +69,19 @@ std::uint64_t planned_bytes(const ObstacleSource& field, const Query& q, int ran
   // A first frontier: one layer's tiles as entries.
   bytes += layout.layer_tiles() * sizeof(detail::Entry);
   return bytes;
+}
+
+int usable_cpus() {
+  const int places = omp_get_num_places();
+  if (places <= 0) return CpuSet::of_this_process().count();
+  std::vector<int> ids;
+  for (int p = 0; p < places; ++p) {
+    std::vector<int> in(static_cast<std::size_t>(omp_get_place_num_procs(p)));
+    omp_get_place_proc_ids(p, in.data());
+    ids.insert(ids.end(), in.begin(), in.end());
+  }
+  std::sort(ids.begin(), ids.end());
+  return std::max(1, static_cast<int>(std::unique(ids.begin(), ids.end()) - ids.begin()));
 }
 
 int compiled_dims() {

@@ -286,6 +286,16 @@ Result run_supersteps(SuperstepAlgorithm& alg, const ObstacleSource& field, cons
       }
     }
   }
+  // Every rank must know of a failure before the collectives below: one raised after the last
+  // decision (the checkpoint that ends an interrupted run, a team smaller than asked) would
+  // otherwise leave the other ranks waiting in the first of them while this one throws.
+  {
+    bool mine = failed || team != T;
+    for (const DriverThread& t : threads) mine = mine || t.control.error != nullptr;
+    std::uint64_t any = mine ? 1 : 0;
+    tr.max(std::span<std::uint64_t>(&any, 1));
+    failed = any != 0;
+  }
   rethrow_failure(threads, team, failed);
 
   Counters& k = res.counters;

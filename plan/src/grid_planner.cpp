@@ -5,7 +5,6 @@
 #include <cmath>
 #include <thread>
 
-#include "hpcplan/core/cpu_set.hpp"
 #include "hpcplan/core/error.hpp"
 #include "hpcplan/core/format.hpp"
 #include "hpcplan/core/memory.hpp"
@@ -73,7 +72,7 @@ std::uint64_t dense_memory_budget(const GridSearchOptions& options, const GridRe
 
 int dense_threads(const GridSearchOptions& options, int ranks_sharing_cpus) {
   if (options.threads > 0) return options.threads;
-  return std::max(1, CpuSet::of_this_process().count() / std::max(1, ranks_sharing_cpus));
+  return std::max(1, dense::usable_cpus() / std::max(1, ranks_sharing_cpus));
 }
 
 int dense_threads(const ObstacleSource& field, const GridSearchOptions& o, int ranks_sharing_cpus) {

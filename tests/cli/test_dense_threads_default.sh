@@ -20,6 +20,12 @@ threads() { python3 -c 'import json,sys; print(json.load(sys.stdin)["dense"]["th
 got=$("$bin" "${problem[@]}" | threads) || fail "the serial run failed"
 want=$((cpus < 3 ? cpus : 3))
 [[ $got == "$want" ]] || fail "serial on $cpus CPUs: $got threads, not $want"
+# OpenMP's binding pins the main thread to its first place before main runs: the default
+# counts the places' CPUs, not the pinned thread's one.
+for bind in OMP_PROC_BIND=true OMP_PLACES=cores; do
+  got=$(env "$bind" "$bin" "${problem[@]}" | threads) || fail "the run with $bind failed"
+  [[ $got == "$want" ]] || fail "serial with $bind on $cpus CPUs: $got threads, not $want"
+done
 got=$(taskset -c 0 "$bin" "${problem[@]}" | threads) || fail "the run under taskset failed"
 [[ $got == 1 ]] || fail "serial under taskset -c 0: $got threads, not 1"
 echo "dense_threads_default: serial: $want thread(s) on $cpus CPUs, 1 under taskset -c 0"

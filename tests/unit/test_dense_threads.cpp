@@ -154,6 +154,27 @@ TEST(DenseThreads, TwoInProcessRanksOfTwoThreadsGiveTheOneRankAnswer) {
     std::remove((file + ".r0").c_str());
     std::remove((file + ".r1").c_str());
   }
+  // One rank cannot write the checkpoint that ends an interrupted run (its file is a folder):
+  // every rank learns of it and throws, none waits for the failed one.
+  const std::string blocked = file + "-blocked";
+  std::filesystem::create_directories(blocked + ".r1");
+  test_support::InProcessRanks hub(2);
+  std::vector<std::string> errors(2);
+  hub.run([&](int rank) {
+    try {
+      test_support::InProcessTransport tr(hub, rank);
+      dense::Query q = corner_query(field, dense::Algorithm::bfs, 2);
+      q.checkpointing.path = blocked;
+      q.checkpointing.interrupted = [] { return true; };
+      dense::search(field, q, tr);
+    } catch (const std::exception& e) {
+      errors[rank] = e.what();
+    }
+  });
+  EXPECT_NE(errors[1].find(blocked + ".r1"), std::string::npos) << errors[1];
+  EXPECT_NE(errors[0].find("another rank failed"), std::string::npos) << errors[0];
+  std::filesystem::remove_all(blocked + ".r1");
+  std::remove((blocked + ".r0").c_str());
 }
 
 // The run's stop condition (asked on the calling thread once per level) says the run is under

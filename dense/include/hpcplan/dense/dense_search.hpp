@@ -126,6 +126,12 @@ std::uint64_t planned_bytes(const ObstacleSource& field, const Query& query, int
 // with -DHPCPLAN_DENSE_DIMS=N (search() refuses a higher one; --engine auto picks sparse there).
 int compiled_dims();
 
+// The CPUs this process may run the engine's threads on: its affinity mask (core/cpu_set.hpp),
+// or, when OpenMP binds its threads (OMP_PROC_BIND, OMP_PLACES: the runtime then pins the
+// calling thread to the first place before main runs, so its mask shows one CPU), every CPU
+// of its places. At least 1.
+int usable_cpus();
+
 // InputError naming the build option when `dims` is over compiled_dims(). Callers that run on
 // several ranks call it before any rank communicates, so that all refuse together.
 void require_compiled(int dims);
