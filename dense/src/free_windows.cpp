@@ -59,8 +59,7 @@ std::uint64_t FreeWindows::table_bytes(const ObstacleSource& field, const TileLa
 }
 
 FreeWindows::FreeWindows(const ObstacleSource& field, const TileLayout& layout, int max_word_steps)
-    : layout_(layout),
-      dims_(layout.dims()),
+    : dims_(layout.dims()),
       extent_(layout.extent()),
       in_tile_axes_(layout.in_tile_axes()),
       tiles1_(layout.in_tile_axes() == 2 ? layout.tiles(1) : 1),

@@ -94,7 +94,6 @@ class FreeWindows {
 
   bool occupancy_ = false;
   std::array<std::int64_t, kMaxDims> padded_stride_{};  // occupancy: tiles, padded grid
-  const TileLayout& layout_;
   int dims_, extent_, in_tile_axes_, tiles1_;
   int threshold_;
   int out_of_box_;  // tau change of a step out of the box: drives every mask to zero
