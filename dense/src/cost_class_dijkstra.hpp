@@ -182,16 +182,8 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
   const char* progress_unit() const override { return "cost"; }
   double progress_value(const Totals& t) const override { return t.key; }
 
-  std::uint64_t expanded() const override {
-    std::uint64_t n = 0;
-    for (const Thread& t : threads_) n += t.settled;
-    return n;
-  }
-  std::uint64_t generated() const override {
-    std::uint64_t n = 0;
-    for (const Thread& t : threads_) n += t.generated;
-    return n;
-  }
+  std::uint64_t expanded() const override { return sum_over(threads_, &Thread::settled); }
+  std::uint64_t generated() const override { return sum_over(threads_, &Thread::generated); }
   void finish(Result& res, const Totals& totals, bool solved) override {
     std::vector<ClassKey> classes;
     for (const Thread& t : threads_)

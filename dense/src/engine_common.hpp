@@ -115,6 +115,14 @@ struct HaloSwap {
   }
 };
 
+// The sum of one counter over an algorithm's threads (`field`: a pointer to the member).
+template <class Threads, class Field>
+std::uint64_t sum_over(const Threads& threads, Field field) {
+  std::uint64_t n = 0;
+  for (const auto& t : threads) n += t.*field;
+  return n;
+}
+
 // Every rank's value of v, in rank order (collective).
 template <class T>
 std::vector<T> gather_ranks(SlabTransport& tr, T v) {

@@ -160,16 +160,8 @@ class LevelBfs final : public SuperstepAlgorithm {
   const char* progress_unit() const override { return "level"; }
   double progress_value(const Totals& t) const override { return static_cast<double>(t.steps); }
 
-  std::uint64_t expanded() const override {
-    std::uint64_t n = 0;
-    for (const Thread& t : threads_) n += t.expanded;
-    return n;
-  }
-  std::uint64_t generated() const override {
-    std::uint64_t n = 0;
-    for (const Thread& t : threads_) n += t.generated;
-    return n;
-  }
+  std::uint64_t expanded() const override { return sum_over(threads_, &Thread::expanded); }
+  std::uint64_t generated() const override { return sum_over(threads_, &Thread::generated); }
   void finish(Result& res, const Totals& totals, bool solved) override {
     res.counters.peak_states = totals.reached;
     res.counters.peak_open = totals.peak_fresh;
