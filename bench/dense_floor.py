@@ -19,33 +19,20 @@ Usage: python3 bench/dense_floor.py [--rounds N] [--old PATH/TO/OLD/hpcplan] [--
 import argparse
 import json
 import os
-import shutil
 import statistics
 import subprocess
 import sys
 
+import dense_runs
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CLI = os.path.join(ROOT, "build", "bin", "hpcplan")
 BANDWIDTH = os.path.join(ROOT, "build", "bin", "hpcplan_memory_bandwidth")
-MPIRUN = shutil.which("mpirun") or shutil.which("mpiexec")
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1")
 BYTES_PER_VISIT = 48  # a BFS tile visit reads and writes its 3 store words
 
 
 def grid(binary, args, ranks=0, timeout=3600):
-    """One `hpcplan grid --json` run (under mpirun when ranks > 0): JSON, wall s, peak RSS."""
-    cmd = ["/usr/bin/time", "-f", "%e %M"]
-    if ranks:
-        cmd += [MPIRUN, "-np", str(ranks), "--bind-to", "core"]
-    cmd += [binary, "grid", "--json", *args]
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=ENV)
-    if p.returncode != 0:
-        sys.exit(f"dense_floor: {' '.join(cmd[3:])} failed: {p.stderr.strip()[-400:]}")
-    wall, rss_kb = p.stderr.strip().splitlines()[-1].split()
-    j = json.loads(p.stdout)
-    j["_wall_s"], j["_rss_bytes"] = float(wall), int(rss_kb) * 1024
-    return j
+    return dense_runs.grid(binary, args, ranks, timeout, who="dense_floor")
 
 
 def alternated(a, b, rounds):
@@ -117,7 +104,7 @@ def main():
     out["threads2"] = {k: v for k, v in r.items() if k not in ("a", "b")}
     md.append(f"| 4D e100 BFS, 2 threads over 1 (median ratio, min-max) | {r['speedup']:.2f}x "
               f"({r['speedup_min']:.2f}-{r['speedup_max']:.2f}) |")
-    if MPIRUN:
+    if dense_runs.MPIRUN:
         r = alternated(one, (CLI, bfs4 + ["--threads", "1"], 2), o.rounds)
         out["ranks2"] = {k: v for k, v in r.items() if k not in ("a", "b")}
         md.append(f"| 4D e100 BFS, 2 ranks x 1 thread over 1 (median ratio, min-max) | "

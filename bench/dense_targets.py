@@ -25,6 +25,8 @@ import subprocess
 import sys
 import time
 
+import dense_runs
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CLI = os.path.join(ROOT, "build", "bin", "hpcplan")
 SCALING = os.path.join(ROOT, "build", "bin", "hpcplan_mpi_scaling")
@@ -32,16 +34,7 @@ SCALING = os.path.join(ROOT, "build", "bin", "hpcplan_mpi_scaling")
 
 def grid(args, timeout=3600):
     """One `hpcplan grid --json` run; returns the JSON object and the wall time and peak RSS."""
-    cmd = ["/usr/bin/time", "-f", "%e %M", CLI, "grid", "--json", *args]
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
-    if p.returncode != 0:
-        # time's own line is the last; the program's error is the one before it.
-        lines = p.stderr.strip().splitlines()
-        sys.exit(f"dense_targets: {' '.join(cmd[3:])} failed: {lines[-2] if len(lines) > 1 else lines}")
-    wall, rss_kb = p.stderr.strip().splitlines()[-1].split()
-    j = json.loads(p.stdout)
-    j["_wall_s"], j["_rss_bytes"] = float(wall), int(rss_kb) * 1024
-    return j
+    return dense_runs.grid(CLI, args, timeout=timeout, who="dense_targets")
 
 
 def alternated(a_args, b_args, repeats):

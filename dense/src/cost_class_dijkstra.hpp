@@ -151,27 +151,26 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
       for (const ClassEntry& e : t.out_local[id]) file(me, e);
     for (const ClassEntry& e : inbox_[id]) file(me, e);
   }
-  StepReport report(int id) override {
-    Thread& me = threads_[id];
+  StepReport report(int id) const override {
+    const Thread& me = threads_[id];
     StepReport r;
-    r.fresh = me.settled_now();
+    r.fresh = me.settled - me.settled_at_step;
     r.pending = me.pending_entries();
     r.list_bytes = list_bytes(me);
     if (!me.pending.empty()) r.next_key = me.pending.begin()->first.value();
     r.goal = me.goal_hit;
     r.active = me.taken;
-    me.taken = 0;
     return r;
   }
   std::uint64_t list_bytes(int id) const override { return list_bytes(threads_[id]); }
   void next_step(int id) override {
     Thread& me = threads_[id];
-    me.out_down.clear();
-    me.out_up.clear();
-    for (auto& box : me.out_local) box.clear();
+    me.clear();
+    me.taken = 0;
+    me.settled_at_step = me.settled;
   }
   void send_halo(std::vector<std::byte>& down, std::vector<std::byte>& up) override {
-    halo_.send(threads_, down, up);
+    HaloSwap<ClassEntry>::send(threads_, down, up);
   }
   void receive_halo(const std::vector<std::byte>& from_below,
                     const std::vector<std::byte>& from_above) override {
@@ -236,7 +235,7 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
     r.get_array(std::span<Word>(settled_.data(), settled_.size()));
     r.get_array(std::span<Word>(keys_.data(), keys_.size()));
     for (Thread& t : threads_) {
-      t.settled = t.reported = r.get<std::uint64_t>();
+      t.settled = t.settled_at_step = r.get<std::uint64_t>();
       t.generated = r.get<std::uint64_t>();
       // (The merge windows start empty, so no epoch of theirs needs restoring.)
       r.get_array(t.processed);
@@ -281,25 +280,21 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
     }
   };
 
-  struct alignas(64) Thread {  // a cache line apart: each thread writes its own counters
+  struct alignas(64) Thread
+      : Outboxes<ClassEntry> {  // a cache line apart: each thread writes its own counters
     std::map<ClassKey, std::vector<Entry>> pending;
     Dedup dedup[5];  // per move length
     std::uint32_t epoch = 0;
     int id = 0;
-    std::vector<ClassEntry> out_down, out_up;        // to the ranks below and above
-    std::vector<std::vector<ClassEntry>> out_local;  // to this rank's threads
-    std::vector<std::vector<Entry>> spare;           // emptied lists, reused for new classes
-    std::vector<ClassKey> processed;                 // the classes this thread took, in order
-    std::uint64_t settled = 0, generated = 0, reported = 0;
+    std::vector<std::vector<Entry>> spare;  // emptied lists, reused for new classes
+    std::vector<ClassKey> processed;        // the classes this thread took, in order
+    // States settled, and settled before this bucket (its report's fresh states are the
+    // difference).
+    std::uint64_t settled = 0, generated = 0, settled_at_step = 0;
     bool goal_hit = false;
     ClassKey goal_key;
     std::uint64_t taken = 0;  // class entries taken in this bucket
 
-    std::uint64_t settled_now() {
-      const std::uint64_t d = settled - reported;
-      reported = settled;
-      return d;
-    }
     std::uint64_t pending_entries() const {
       std::uint64_t n = 0;
       for (const auto& [key, list] : pending) n += list.size();
@@ -320,8 +315,7 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
   };
 
   static std::uint64_t list_bytes(const Thread& t) {
-    std::uint64_t n = (t.out_down.capacity() + t.out_up.capacity()) * sizeof(ClassEntry);
-    for (const auto& box : t.out_local) n += box.capacity() * sizeof(ClassEntry);
+    std::uint64_t n = t.capacity_bytes();
     for (const auto& [key, list] : t.pending) n += list.capacity() * sizeof(Entry) + 64;
     for (const auto& list : t.spare) n += list.capacity() * sizeof(Entry);
     return n;

@@ -37,9 +37,10 @@ std::span<const std::byte> as_bytes_of(const std::vector<T>& v) {
   return std::as_bytes(std::span<const T>(v.data(), v.size()));
 }
 template <class T>
-void to_bytes(const std::vector<T>& v, std::vector<std::byte>& out) {
-  out.resize(v.size() * sizeof(T));
-  if (!v.empty()) std::memcpy(out.data(), v.data(), out.size());
+void append_bytes(const std::vector<T>& v, std::vector<std::byte>& out) {
+  const std::size_t at = out.size();
+  out.resize(at + v.size() * sizeof(T));
+  if (!v.empty()) std::memcpy(out.data() + at, v.data(), v.size() * sizeof(T));
 }
 template <class T>
 void from_bytes(const std::vector<std::byte>& b, std::vector<T>& out) {
@@ -85,25 +86,44 @@ struct SlabMap {
   bool empty() const { return store_tiles == 0; }
 };
 
+// A thread's outboxes: the targets it found in blocks it does not own, for the ranks below and
+// above and for each other thread of its rank. Written by their thread during a step's work,
+// read by the others (and the master's halo swap) after the barrier that ends it, emptied by
+// their thread in the step's next_step().
+template <class Item>
+struct Outboxes {
+  std::vector<Item> out_down, out_up;
+  std::vector<std::vector<Item>> out_local;
+
+  void clear() {
+    out_down.clear();
+    out_up.clear();
+    for (auto& box : out_local) box.clear();
+  }
+  std::uint64_t capacity_bytes() const {
+    std::size_t n = out_down.capacity() + out_up.capacity();
+    for (const auto& box : out_local) n += box.capacity();
+    return n * sizeof(Item);
+  }
+};
+
 // One rank's halo swap, by the master thread between the driver's barriers: the threads'
 // outboxes for the ranks below and above, as bytes for the transport's exchange; and what
 // arrived, sorted into the inboxes of the threads that own its tiles (read by those threads
 // after the next barrier).
 template <class Item>
 struct HaloSwap {
-  std::vector<Item> down, up, received;
+  std::vector<Item> received;
 
   template <class Threads>
-  void send(const Threads& threads, std::vector<std::byte>& down_bytes,
-            std::vector<std::byte>& up_bytes) {
+  static void send(const Threads& threads, std::vector<std::byte>& down,
+                   std::vector<std::byte>& up) {
     down.clear();
     up.clear();
-    for (const auto& t : threads) {
-      down.insert(down.end(), t.out_down.begin(), t.out_down.end());
-      up.insert(up.end(), t.out_up.begin(), t.out_up.end());
+    for (const Outboxes<Item>& t : threads) {
+      append_bytes(t.out_down, down);
+      append_bytes(t.out_up, up);
     }
-    to_bytes(down, down_bytes);
-    to_bytes(up, up_bytes);
   }
   void receive(const SlabMap& slabs, const std::vector<std::byte>& from_below,
                const std::vector<std::byte>& from_above, std::vector<std::vector<Item>>& inbox) {

@@ -96,7 +96,8 @@ class LevelBfs final : public SuperstepAlgorithm {
       const Block& b = slabs_.blocks[j];
       Word* const words = block_words(b);
       const std::uint64_t first = b.mark, last = b.mark + (b.hi - b.lo);  // bits in `active`
-      for (std::uint64_t w = first >> 6; w <= (last - 1) >> 6 && first < last; ++w) {
+      if (first == last) continue;
+      for (std::uint64_t w = first >> 6; w <= (last - 1) >> 6; ++w) {
         // This block's bits of the word (a word may hold the end of one block and the start
         // of the next, which another pass over the thread's blocks takes).
         Word bits = active[w];
@@ -130,7 +131,7 @@ class LevelBfs final : public SuperstepAlgorithm {
     for (const Entry& e : inbox_[id])
       apply(me, slabs_.of_tile(e.tile), e.tile, e.bits, next, next_active);
   }
-  StepReport report(int id) override {
+  StepReport report(int id) const override {
     const Thread& me = threads_[id];
     StepReport r;
     r.fresh = me.fresh;
@@ -143,14 +144,12 @@ class LevelBfs final : public SuperstepAlgorithm {
   std::uint64_t list_bytes(int id) const override { return list_bytes(threads_[id]); }
   void next_step(int id) override {
     Thread& me = threads_[id];
-    me.out_down.clear();
-    me.out_up.clear();
-    for (auto& box : me.out_local) box.clear();
+    me.clear();
     me.fresh = 0;
     me.active_now = 0;
   }
   void send_halo(std::vector<std::byte>& down, std::vector<std::byte>& up) override {
-    halo_.send(threads_, down, up);
+    HaloSwap<Entry>::send(threads_, down, up);
   }
   void receive_halo(const std::vector<std::byte>& from_below,
                     const std::vector<std::byte>& from_above) override {
@@ -217,11 +216,10 @@ class LevelBfs final : public SuperstepAlgorithm {
   }
 
  private:
-  struct alignas(64) Thread {             // a cache line apart: each thread writes its own counters
-    std::vector<int> blocks;              // the blocks it owns, in tile order
-    ZeroedWords active[2];                // tiles with pending states, by level parity
-    std::vector<Entry> out_down, out_up;  // to the ranks below and above
-    std::vector<std::vector<Entry>> out_local;  // to this rank's threads
+  struct alignas(64) Thread
+      : Outboxes<Entry> {     // a cache line apart: each thread writes its own counters
+    std::vector<int> blocks;  // the blocks it owns, in tile order
+    ZeroedWords active[2];    // tiles with pending states, by level parity
     int id = 0;
     std::uint64_t expanded = 0, generated = 0, fresh = 0;
     std::uint64_t active_now = 0;  // tiles swept with states of this level
@@ -256,11 +254,7 @@ class LevelBfs final : public SuperstepAlgorithm {
     const std::uint64_t i = b.mark + (tile - b.lo);
     active[i >> 6] |= Word{1} << (i & 63);
   }
-  static std::uint64_t list_bytes(const Thread& t) {
-    std::size_t n = t.out_down.capacity() + t.out_up.capacity();
-    for (const auto& box : t.out_local) n += box.capacity();
-    return n * sizeof(Entry);
-  }
+  static std::uint64_t list_bytes(const Thread& t) { return t.capacity_bytes(); }
 
   // Bits reaching tile u of block b, which this thread owns.
   [[gnu::always_inline]] inline void apply(Thread& me, const Block& b, std::uint64_t u, Word bits,

@@ -18,12 +18,13 @@
 //   [several ranks]    the master thread swaps the rank's outboxes with the neighbouring ranks
 //   barrier            (send_halo / receive_halo)
 //   receive(thread)    apply what the other threads and ranks sent this thread
-//   publish            this thread's StepReport, in the slot of the step's parity
+//   publish            this thread's StepReport, halt and (thread 0) checkpoint request, in the
+//                      slot of the step's parity
 //   barrier
 //   decide             one rank: every thread combines the published reports itself (no
 //                      further barrier); several: the master thread combines them, reduces
 //                      over the ranks, and a barrier hands the decision to the others
-//   next_step(thread)  clear outboxes, swap lists
+//   next_step(thread)  clear outboxes and the step's counters
 //   [a checkpoint due] barrier, the master writes, barrier
 // So a step costs two barriers on one rank and four on several, for every algorithm. A thread
 // writes its published slot again only two steps later, after every thread has passed the
@@ -61,7 +62,7 @@ struct Halt {
   std::optional<Status> stop;  // timeout, budget_exceeded or cancelled
   bool failed = false;
 
-  void raise(Status s);
+  void raise(Status s);  // std::logic_error unless timeout, budget_exceeded or cancelled
   void merge(const Halt& other);
   bool any() const { return failed || stop.has_value(); }
   // A total order of severity (0: none), for reductions over ranks.
@@ -104,8 +105,8 @@ struct alignas(64) ThreadControl {
   // Polls the token and the deadline; raises the halt and says whether to stop.
   bool poll() {
     if (!workers_stop->can_stop()) return false;
-    if (const auto s = workers_stop->check()) {
-      halt.raise(*s == Status::cancelled ? Status::cancelled : Status::timeout);
+    if (const auto s = workers_stop->check()) {  // cancelled or timeout
+      halt.raise(*s);
       return true;
     }
     return false;
@@ -140,7 +141,7 @@ class SuperstepAlgorithm {
   // Every thread, each step (see superstep.hpp's header).
   virtual void work(int thread, const Superstep& step, ThreadControl& control) = 0;
   virtual void receive(int thread, const Superstep& step) = 0;
-  virtual StepReport report(int thread) = 0;
+  virtual StepReport report(int thread) const = 0;
   virtual std::uint64_t list_bytes(int thread) const = 0;
   virtual void next_step(int thread) = 0;
   // The master thread, several ranks only: this rank's outboxes, and what came back.

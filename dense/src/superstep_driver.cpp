@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <stdexcept>
+#include <string>
 
 #include "engine_checkpoint.hpp"
 #include "hpcplan/core/error.hpp"
@@ -13,40 +16,35 @@ namespace hpcplan::dense::detail {
 
 namespace {
 
-std::uint64_t severity_of(Status s) {
-  switch (s) {
-    case Status::timeout:
-      return 1;
-    case Status::budget_exceeded:
-      return 2;
-    case Status::cancelled:
-      return 3;
-    default:
-      return 0;
-  }
-}
-constexpr std::uint64_t kFailedSeverity = 4;
+// The stops in increasing severity (a stop's severity is its place here + 1; failed follows).
+constexpr Status kStops[] = {Status::timeout, Status::budget_exceeded, Status::cancelled};
+constexpr std::uint64_t kFailedSeverity = std::size(kStops) + 1;
 
-// One thread's state in the driver: its control block and what it published, by step parity.
+std::uint64_t severity_of(Status s) {
+  for (std::size_t i = 0; i < std::size(kStops); ++i)
+    if (kStops[i] == s) return i + 1;
+  return 0;
+}
+
+// One thread's state in the driver: its control block and what it published (its report, its
+// halt, and on thread 0 the checkpoint schedule's answer), by step parity.
 struct alignas(64) DriverThread {
   ThreadControl control;
-  StepReport published[2];
-  Halt published_halt[2];
-  int published_save[2] = {0, 0};
+  Decision published[2];
 };
 
 Decision combine(const std::vector<DriverThread>& threads, int slot) {
   Decision d;
   for (const DriverThread& t : threads) {
-    const StepReport& p = t.published[slot];
-    d.sum.fresh += p.fresh;
-    d.sum.pending += p.pending;
-    d.sum.list_bytes += p.list_bytes;
-    d.sum.active += p.active;
-    d.sum.next_key = std::min(d.sum.next_key, p.next_key);
-    d.sum.goal = d.sum.goal || p.goal;
-    d.halt.merge(t.published_halt[slot]);
-    d.save = std::max(d.save, t.published_save[slot]);
+    const Decision& p = t.published[slot];
+    d.sum.fresh += p.sum.fresh;
+    d.sum.pending += p.sum.pending;
+    d.sum.list_bytes += p.sum.list_bytes;
+    d.sum.active += p.sum.active;
+    d.sum.next_key = std::min(d.sum.next_key, p.sum.next_key);
+    d.sum.goal = d.sum.goal || p.sum.goal;
+    d.halt.merge(p.halt);
+    d.save = std::max(d.save, p.save);
   }
   return d;
 }
@@ -85,6 +83,11 @@ void rethrow_failure(const std::vector<DriverThread>& threads, int team, bool fa
 }  // namespace
 
 void Halt::raise(Status s) {
+  // A status outside the order would be dropped by the ranks' reduction (severity 0) while it
+  // ends this rank's run: the ranks would decide differently.
+  if (severity_of(s) == 0)
+    throw std::logic_error("dense engine: a run stops only on timeout, budget or cancel, not " +
+                           std::string(to_string(s)));
   if (!stop || severity_of(s) > severity_of(*stop)) stop = s;
 }
 void Halt::merge(const Halt& other) {
@@ -98,12 +101,8 @@ Halt Halt::of_severity(std::uint64_t s) {
   Halt h;
   if (s >= kFailedSeverity)
     h.failed = true;
-  else if (s == 3)
-    h.stop = Status::cancelled;
-  else if (s == 2)
-    h.stop = Status::budget_exceeded;
-  else if (s == 1)
-    h.stop = Status::timeout;
+  else if (s > 0)
+    h.stop = kStops[s - 1];
   return h;
 }
 
@@ -175,8 +174,7 @@ Result run_supersteps(SuperstepAlgorithm& alg, const ObstacleSource& field, cons
             ctl.halt.raise(Status::budget_exceeded);
           if (id == 0) {
             if (q.stop.can_stop())
-              if (const auto s = q.stop.check())
-                ctl.halt.raise(*s == Status::cancelled ? Status::cancelled : Status::timeout);
+              if (const auto s = q.stop.check()) ctl.halt.raise(*s);
             save = schedule.due();
           }
         } catch (...) {
@@ -201,14 +199,15 @@ Result run_supersteps(SuperstepAlgorithm& alg, const ObstacleSource& field, cons
           ctl.caught();
         }
         const int slot = static_cast<int>(step.index & 1);
+        Decision& mine = me.published[slot];
         try {
-          me.published[slot] = alg.report(id);
+          mine.sum = alg.report(id);
         } catch (...) {
           ctl.caught();
-          me.published[slot] = {};
+          mine.sum = {};
         }
-        me.published_halt[slot] = ctl.halt;
-        me.published_save[slot] = save;
+        mine.halt = ctl.halt;
+        mine.save = save;
 #pragma omp barrier
         Decision d;
         if (alone) {
