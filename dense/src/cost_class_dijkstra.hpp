@@ -11,6 +11,7 @@
 // whole, so its counts do not depend on the number of ranks or threads.
 #include <limits>
 #include <map>
+#include <tuple>
 
 #include "engine_common.hpp"
 #include "hpcplan/core/error.hpp"
@@ -51,6 +52,11 @@ struct ClassEntry {
   Word bits;
   ClassKey key;
 };
+// Halo entries merge when they name the same tile and class (HaloSwap).
+inline std::tuple<std::uint64_t, std::int32_t, std::int32_t, std::int32_t, std::int32_t> halo_key(
+    const ClassEntry& e) {
+  return {e.tile, e.key.ones, e.key.root2, e.key.root3, e.key.hops};
+}
 
 template <int D, int K, class Kernel>
 class CostClassDijkstra final : public SuperstepAlgorithm {
@@ -72,7 +78,7 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
     if (q_.keep_path) keys_ = ZeroedWords(slabs_.store_tiles * 64);
     threads_.resize(T);
     for (int t = 0; t < T; ++t) {
-      threads_[t].out_local.resize(T);
+      threads_[t].size_for(slabs_);
       threads_[t].id = t;
     }
     inbox_.resize(T);
@@ -169,12 +175,11 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
     me.taken = 0;
     me.settled_at_step = me.settled;
   }
-  void send_halo(std::vector<std::byte>& down, std::vector<std::byte>& up) override {
-    HaloSwap<ClassEntry>::send(threads_, down, up);
+  void send_halo(std::vector<std::vector<std::byte>>& to) override {
+    halo_.send(threads_, slabs_.peers.size(), to);
   }
-  void receive_halo(const std::vector<std::byte>& from_below,
-                    const std::vector<std::byte>& from_above) override {
-    halo_.receive(slabs_, from_below, from_above, inbox_);
+  void receive_halo(const std::vector<std::vector<std::byte>>& from) override {
+    halo_.receive(slabs_, from, inbox_);
   }
   // The next bucket: the floor of the smallest class pending anywhere.
   double next_key(const Decision& d) const override { return std::floor(d.sum.next_key); }
@@ -329,16 +334,14 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
     for (Word w = fresh; w; w &= w - 1) k[std::countr_zero(w)] = key.packed() + 1;
   }
 
-  // A target in the source's block, or in the next block either side when this thread owns
-  // that one too, goes into its class's list unless already settled; any other, to an outbox
-  // for its block's owner.
+  // A target in the source's block, or in another block this thread owns, goes into its
+  // class's list unless already settled; any other, to an outbox for its block's owner.
   void expand(Thread& me, const Block& b, std::uint64_t tile, Word fresh, const ClassKey& key,
               std::vector<Entry>** into) {
     int t[kMaxDims];
     layout_.tile_coords(tile, t);
     FreeWindows::At at;
     windows_.locate(t, at);
-    const int j = slabs_.layer_block[t[D - 1]];
     me.generated += kernel_.template expand<true>(
         fresh, at, windows_.stride(), stride_.data(),
         [&](std::int64_t delta, Word bits, int axes) __attribute__((always_inline)) {
@@ -350,8 +353,7 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
             me.dedup[axes].add(*into[axes], u, open, me.epoch);
             return;
           }
-          const int to = u < b.lo ? j - 1 : j + 1;
-          const Block& nb = slabs_.blocks[to];
+          const Block& nb = slabs_.of_tile(u);
           if (nb.rank == slabs_.rank && nb.thread == me.id) {
             // This thread's too: straight into the class.
             const Word open = bits & ~settled_[nb.store + (u - nb.lo)];
@@ -364,7 +366,7 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
           if (nb.rank == slabs_.rank)
             me.out_local[nb.thread].push_back(e);
           else
-            (to < j ? me.out_down : me.out_up).push_back(e);
+            me.out_peer[slabs_.peer_slot[nb.rank]].push_back(e);
         });
   }
 
@@ -423,8 +425,8 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
           inside = inside && y[a] >= 0 && y[a] < layout_.extent();
         }
         if (!inside) continue;
-        if (!slabs_.holds_layer(layout_.layer_of(std::span<const int>(y, D)))) continue;
         const std::uint64_t tile = layout_.tile_of(std::span<const int>(y, D));
+        if (!slabs_.holds_tile(tile)) continue;
         const Block& b = slabs_.of_tile(tile);
         const std::uint64_t stored =
             keys_[(b.store + (tile - b.lo)) * 64 + layout_.bit_of(std::span<const int>(y, D))];

@@ -51,11 +51,13 @@ std::uint64_t planned_bytes(const ObstacleSource& field, const Query& q, int ran
     return std::numeric_limits<std::uint64_t>::max();
   const TileLayout layout(dims, field.extent(), in_tile_axes(field, q));
   // The rank holding the most tiles under the plan the run will use.
-  std::uint64_t tiles = 0;
-  for (int r = 0; r < std::max(1, ranks); ++r)
-    tiles = std::max(tiles, detail::plan_slabs(field, layout, r, std::max(1, ranks),
-                                               std::max(1, q.threads), q.block_layers)
-                                .store_tiles);
+  std::uint64_t tiles = 0, section_tiles = 0;
+  for (int r = 0; r < std::max(1, ranks); ++r) {
+    const detail::SlabMap plan = detail::plan_slabs(field, layout, r, std::max(1, ranks),
+                                                    std::max(1, q.threads), q.block_sections);
+    tiles = std::max(tiles, plan.store_tiles);
+    section_tiles = plan.section_tiles;
+  }
   std::uint64_t bytes = FreeWindows::table_bytes(field, layout, max_word_steps(q, dims));
   if (bytes == std::numeric_limits<std::uint64_t>::max()) return bytes;
   if (q.algorithm == Algorithm::bfs) {
@@ -66,8 +68,8 @@ std::uint64_t planned_bytes(const ObstacleSource& field, const Query& q, int ran
   }
   // A distance field's part: a 4-byte value per state of the rank's slab.
   if (q.distances) bytes += tiles * 64 * 4;
-  // A first frontier: one layer's tiles as entries.
-  bytes += layout.layer_tiles() * sizeof(detail::Entry);
+  // A first frontier: one section's tiles as entries.
+  bytes += section_tiles * sizeof(detail::Entry);
   return bytes;
 }
 

@@ -68,8 +68,11 @@ std::string run_identity(const ObstacleSource& field, const Query& q, const Slab
   o << "ranks = " << slabs.ranks << "\n"
     << "rank = " << slabs.rank << "\n"
     << "threads = " << slabs.threads << "\n"
-    << "layers per block = " << slabs.block_layers << "\n"
-    << "tiles held = " << slabs.store_tiles << "\n";
+    << "layers per block = " << slabs.block_sections << "\n";
+  // (Added with cuts below the last axis; absent where the cut is the last axis, so that
+  // checkpoints written before it still open.)
+  if (slabs.cut_axis != field.dims() - 1) o << "cut axis = " << slabs.cut_axis << "\n";
+  o << "tiles held = " << slabs.store_tiles << "\n";
   return o.str();
 }
 

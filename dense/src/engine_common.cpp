@@ -3,20 +3,36 @@
 
 namespace hpcplan::dense::detail {
 
+int cut_axis_for(const TileLayout& layout, int workers) {
+  const std::uint64_t wanted = static_cast<std::uint64_t>(kSectionsPerWorker) *
+                               static_cast<std::uint64_t>(std::max(1, workers));
+  int cut = layout.dims() - 1;
+  if (workers <= 1) return cut;
+  std::uint64_t sections = static_cast<std::uint64_t>(layout.tiles(cut));
+  // Down through the axes of one cell per tile, while the sections stay few enough to list
+  // (one int each) and there are too few of them.
+  while (sections < wanted && cut - 1 >= layout.in_tile_axes() &&
+         sections * static_cast<std::uint64_t>(layout.tiles(cut - 1)) <= (std::uint64_t{1} << 30))
+    sections *= static_cast<std::uint64_t>(layout.tiles(--cut));
+  return cut;
+}
+
 SlabMap plan_slabs(const ObstacleSource& field, const TileLayout& layout, int rank, int ranks,
-                   int threads, int block_layers) {
+                   int threads, int block_sections) {
   SlabMap s;
   s.rank = rank;
   s.ranks = ranks;
-  s.layer_tiles = layout.layer_tiles();
-  const int layers = layout.layers();
-  const std::vector<double> weights = free_states_per_layer(field, layout);
-  if (block_layers < 0) {
-    const int workers = ranks * std::max(1, threads);
-    block_layers = workers == 1 ? layers : std::max(4, layers / (kBlocksPerWorker * workers));
-  }
-  s.block_layers = block_layers;
-  if (block_layers == 0) {
+  const int workers = ranks * std::max(1, threads);
+  const int dims = layout.dims();
+  s.cut_axis = cut_axis_for(layout, workers);
+  s.section_tiles = static_cast<std::uint64_t>(layout.stride(s.cut_axis));
+  int sections = 1;
+  for (int a = s.cut_axis; a < dims; ++a) sections *= layout.tiles(a);
+  if (block_sections < 0)
+    block_sections = workers == 1 ? sections : std::max(4, sections / (kBlocksPerWorker * workers));
+  s.block_sections = block_sections;
+  if (block_sections == 0) {
+    const std::vector<double> weights = free_states_per_section(field, layout, s.cut_axis);
     const std::vector<int> rb = balanced_slabs(weights, ranks);
     for (int r = 0; r < ranks; ++r) {
       const int n = rb[r + 1] - rb[r];
@@ -29,9 +45,9 @@ SlabMap plan_slabs(const ObstacleSource& field, const TileLayout& layout, int ra
     }
   } else {
     std::vector<int> count(ranks, 0);
-    for (int z = 0, j = 0; z < layers; z += block_layers, ++j) {
+    for (int z = 0, j = 0; z < sections; z += block_sections, ++j) {
       const int r = j % ranks;
-      s.blocks.push_back({z, std::min(layers, z + block_layers), r, count[r]++});
+      s.blocks.push_back({z, std::min(sections, z + block_sections), r, count[r]++});
     }
     // Each rank's k-th block to thread k mod (its threads).
     for (Block& b : s.blocks) b.thread %= std::max(1, std::min(threads, count[b.rank]));
@@ -40,25 +56,51 @@ SlabMap plan_slabs(const ObstacleSource& field, const TileLayout& layout, int ra
   for (const Block& b : s.blocks)
     if (b.rank == rank) s.threads = std::max(s.threads, b.thread + 1);
   s.thread_tiles.assign(s.threads, 0);
-  s.rank_layers.assign(ranks, 0);
-  s.layer_block.assign(layers, 0);
+  s.rank_sections.assign(ranks, 0);
+  s.section_block.assign(sections, 0);
   for (std::size_t j = 0; j < s.blocks.size(); ++j) {
     Block& b = s.blocks[j];
-    b.lo = static_cast<std::uint64_t>(b.z0) * s.layer_tiles;
-    b.hi = static_cast<std::uint64_t>(b.z1) * s.layer_tiles;
-    for (int z = b.z0; z < b.z1; ++z) s.layer_block[z] = static_cast<int>(j);
-    s.rank_layers[b.rank] += b.z1 - b.z0;
+    b.lo = static_cast<std::uint64_t>(b.s0) * s.section_tiles;
+    b.hi = static_cast<std::uint64_t>(b.s1) * s.section_tiles;
+    for (int z = b.s0; z < b.s1; ++z) s.section_block[z] = static_cast<int>(j);
+    s.rank_sections[b.rank] += b.s1 - b.s0;
     if (b.rank != rank) continue;
     b.store = s.store_tiles;
     s.store_tiles += b.hi - b.lo;
     b.mark = s.thread_tiles[b.thread];
     s.thread_tiles[b.thread] += b.hi - b.lo;
   }
-  for (std::size_t j = 0; j < s.blocks.size(); ++j) {
-    if (s.blocks[j].rank != rank) continue;
-    if (j > 0 && s.blocks[j - 1].rank != rank) s.below = s.blocks[j - 1].rank;
-    if (j + 1 < s.blocks.size() && s.blocks[j + 1].rank != rank) s.above = s.blocks[j + 1].rank;
+  // The peers: owners of the sections next to this rank's own, over every axis of the cut.
+  int k = dims - s.cut_axis, around = 1;
+  for (int a = 0; a < k; ++a) around *= 3;
+  std::vector<char> peer(ranks, 0);
+  for (const Block& b : s.blocks) {
+    if (b.rank != rank || ranks == 1) continue;
+    for (int z = b.s0; z < b.s1; ++z) {
+      int c[kMaxDims];
+      for (int a = s.cut_axis, rest = z; a < dims; ++a) {
+        c[a] = rest % layout.tiles(a);
+        rest /= layout.tiles(a);
+      }
+      for (int code = 0; code < around; ++code) {
+        int n = 0, scale = 1;
+        bool inside = true;
+        for (int a = s.cut_axis, q = code; a < dims; ++a, q /= 3) {
+          const int x = c[a] + q % 3 - 1;
+          inside = inside && x >= 0 && x < layout.tiles(a);
+          n += x * scale;
+          scale *= layout.tiles(a);
+        }
+        if (inside) peer[s.blocks[s.section_block[n]].rank] = 1;
+      }
+    }
   }
+  s.peer_slot.assign(ranks, -1);
+  for (int r = 0; r < ranks; ++r)
+    if (peer[r] && r != rank) {
+      s.peer_slot[r] = static_cast<int>(s.peers.size());
+      s.peers.push_back(r);
+    }
   return s;
 }
 

@@ -48,20 +48,25 @@ void from_bytes(const std::vector<std::byte>& b, std::vector<T>& out) {
   if (!b.empty()) std::memcpy(out.data(), b.data(), out.size() * sizeof(T));
 }
 
-// Who holds which layers. The lattice's layers are cut into blocks, each owned by one thread
-// of one rank:
-//   dealt (block_layers > 0): blocks of that many layers dealt round the ranks (block j to rank
-//   j mod P), and each rank's blocks round its threads. A BFS wavefront moves through the
+// Who holds which tiles. The lattice is cut into sections (slab_plan.hpp: the tiles sharing
+// their coordinates on the cut axis and every axis above it), and runs of sections into blocks,
+// each owned by one thread of one rank, so every block is one run of tile indices:
+//   dealt (block_sections > 0): blocks of that many sections dealt round the ranks (block j to
+//   rank j mod P), and each rank's blocks round its threads. A BFS wavefront moves through the
 //   lattice layer by layer, so one contiguous slab per worker leaves most workers idle in most
 //   levels (measured: two threads on contiguous slabs did 73% of their work in parallel, 4D
 //   extent 100); dealt blocks give every worker a share of every level.
-//   contiguous (block_layers == 0): one slab per rank, balanced by free states, cut into one
+//   contiguous (block_sections == 0): one slab per rank, balanced by free states, cut into one
 //   sub-slab per thread the same way (the seed's layout, for comparison).
-// A move crosses at most one layer, so a target is in the source's block or the next one
-// either side; a rank trades with at most two others (the owners of the blocks next to its
-// own: rank - 1 and rank + 1 when dealt).
+// The cut is the last axis while it has layers enough for every worker (kSectionsPerWorker
+// each); past that it moves down one axis at a time, so that blocks are pieces of layers
+// (pencils: a run of rows of one layer) and the ranks can outnumber the extent of any one
+// axis. A move changes each tile coordinate by at most one, so a target lies in a section next
+// to its source's on the axes of the cut: the ranks holding those are this rank's peers, the
+// only ones it trades halos with (two for a cut along the last axis, up to 3^k - 1 for a cut
+// over k axes).
 struct Block {
-  int z0 = 0, z1 = 0;            // layers
+  int s0 = 0, s1 = 0;            // sections
   int rank = 0, thread = 0;      // owner
   std::uint64_t lo = 0, hi = 0;  // tiles
   std::uint64_t store = 0;       // on its rank: offset of tile lo in the rank's store
@@ -70,66 +75,89 @@ struct Block {
 
 struct SlabMap {
   int rank = 0, ranks = 1;
-  int threads = 1;       // this rank's threads (at most one per block it holds)
-  int block_layers = 0;  // 0: contiguous slabs
-  std::uint64_t layer_tiles = 1;
+  int threads = 1;         // this rank's threads (at most one per block it holds)
+  int cut_axis = 0;        // the cut: sections share their tile coordinates from this axis up
+  int block_sections = 0;  // 0: contiguous slabs
+  std::uint64_t section_tiles = 1;
   std::vector<Block> blocks;
-  std::vector<int> layer_block;             // layer -> block
+  std::vector<int> section_block;           // section -> block
   std::uint64_t store_tiles = 0;            // tiles this rank holds
   std::vector<std::uint64_t> thread_tiles;  // tiles each thread holds
-  std::vector<int> rank_layers;             // layers each rank holds
-  int below = -1, above = -1;               // the ranks this one trades with (-1: none)
+  std::vector<int> rank_sections;           // sections each rank holds
+  std::vector<int> peers;                   // the ranks this one trades halos with, ascending
+  std::vector<int> peer_slot;               // per rank: its index in peers, or -1
 
-  const Block& of_tile(std::uint64_t tile) const { return blocks[layer_block[tile / layer_tiles]]; }
-  int block_index_of_tile(std::uint64_t tile) const { return layer_block[tile / layer_tiles]; }
-  bool holds_layer(int z) const { return blocks[layer_block[z]].rank == rank; }
+  int block_index_of_tile(std::uint64_t tile) const { return section_block[tile / section_tiles]; }
+  const Block& of_tile(std::uint64_t tile) const { return blocks[block_index_of_tile(tile)]; }
+  bool holds_tile(std::uint64_t tile) const { return of_tile(tile).rank == rank; }
   bool empty() const { return store_tiles == 0; }
 };
 
-// A thread's outboxes: the targets it found in blocks it does not own, for the ranks below and
-// above and for each other thread of its rank. Written by their thread during a step's work,
-// read by the others (and the master's halo swap) after the barrier that ends it, emptied by
-// their thread in the step's next_step().
+// A halo entry's target, for merging: entries with equal keys become one (their bits or'ed).
+inline std::uint64_t halo_key(const Entry& e) {
+  return e.tile;
+}
+
+// A thread's outboxes: the targets it found in blocks it does not own, for each peer rank and
+// for each other thread of its rank. Written by their thread during a step's work, read by the
+// others (and the master's halo swap) after the barrier that ends it, emptied by their thread
+// in the step's next_step().
 template <class Item>
 struct Outboxes {
-  std::vector<Item> out_down, out_up;
+  std::vector<std::vector<Item>> out_peer;  // per peer (SlabMap::peers)
   std::vector<std::vector<Item>> out_local;
 
+  void size_for(const SlabMap& slabs) {
+    out_peer.resize(slabs.peers.size());
+    out_local.resize(slabs.threads);
+  }
   void clear() {
-    out_down.clear();
-    out_up.clear();
+    for (auto& box : out_peer) box.clear();
     for (auto& box : out_local) box.clear();
   }
   std::uint64_t capacity_bytes() const {
-    std::size_t n = out_down.capacity() + out_up.capacity();
+    std::size_t n = 0;
+    for (const auto& box : out_peer) n += box.capacity();
     for (const auto& box : out_local) n += box.capacity();
     return n * sizeof(Item);
   }
 };
 
 // One rank's halo swap, by the master thread between the driver's barriers: the threads'
-// outboxes for the ranks below and above, as bytes for the transport's exchange; and what
-// arrived, sorted into the inboxes of the threads that own its tiles (read by those threads
-// after the next barrier).
+// outboxes for each peer, merged to one entry per target (a ghost layer's worth: a face tile
+// reached from several sources in a step is sent once), as bytes for the transport's
+// exchange; and what arrived, sorted into the inboxes of the threads that own its tiles (read
+// by those threads after the next barrier).
 template <class Item>
 struct HaloSwap {
-  std::vector<Item> received;
+  std::vector<Item> merged, received;
 
   template <class Threads>
-  static void send(const Threads& threads, std::vector<std::byte>& down,
-                   std::vector<std::byte>& up) {
-    down.clear();
-    up.clear();
-    for (const Outboxes<Item>& t : threads) {
-      append_bytes(t.out_down, down);
-      append_bytes(t.out_up, up);
+  void send(const Threads& threads, std::size_t peers, std::vector<std::vector<std::byte>>& to) {
+    to.resize(peers);
+    for (std::size_t p = 0; p < peers; ++p) {
+      merged.clear();
+      for (const Outboxes<Item>& t : threads)
+        merged.insert(merged.end(), t.out_peer[p].begin(), t.out_peer[p].end());
+      std::sort(merged.begin(), merged.end(),
+                [](const Item& a, const Item& b) { return halo_key(a) < halo_key(b); });
+      std::size_t n = 0;
+      for (std::size_t i = 0; i < merged.size(); ++i) {
+        if (n > 0 && !(halo_key(merged[n - 1]) < halo_key(merged[i])))
+          merged[n - 1].bits |= merged[i].bits;
+        else
+          merged[n++] = merged[i];
+      }
+      merged.resize(n);
+      to[p].clear();
+      append_bytes(merged, to[p]);
     }
   }
-  void receive(const SlabMap& slabs, const std::vector<std::byte>& from_below,
-               const std::vector<std::byte>& from_above, std::vector<std::vector<Item>>& inbox) {
+  void receive(const SlabMap& slabs, const std::vector<std::vector<std::byte>>& from,
+               std::vector<std::vector<Item>>& inbox) {
     for (auto& box : inbox) box.clear();
-    for (const std::vector<std::byte>* bytes : {&from_below, &from_above}) {
-      from_bytes(*bytes, received);
+    for (const std::vector<std::byte>& bytes : from) {
+      from_bytes(bytes, received);
       for (const Item& e : received) inbox[slabs.of_tile(e.tile).thread].push_back(e);
     }
   }
@@ -152,7 +180,7 @@ std::vector<T> gather_ranks(SlabTransport& tr, T v) {
 }
 
 // Writes a distance-field run's values (Query::distances) for this rank's blocks: each block is
-// one run of grid-order cells (its layers' rows of the field's shape), so a settled state's
+// one run of grid-order cells (its sections' cells inside the field's shape), so a settled state's
 // value goes to its run's offset plus its grid index less the run's first. Only the thread that
 // owns a block writes its cells (the states it settles), so no two threads share a run.
 template <class V>
@@ -176,10 +204,31 @@ class DistanceWriter {
     for (std::size_t j = 0; j < slabs.blocks.size(); ++j) {
       const Block& b = slabs.blocks[j];
       if (b.rank != slabs.rank) continue;
-      const std::int64_t lo = std::min(rows, b.z0 * side_[last]);
-      const std::int64_t hi = std::min(rows, b.z1 * side_[last]);
-      const std::uint64_t first = static_cast<std::uint64_t>(lo * stride_[last]);
-      const std::uint64_t count = static_cast<std::uint64_t>((hi - lo) * stride_[last]);
+      std::uint64_t first = 0, count = 0;
+      if (slabs.cut_axis == last) {
+        const std::int64_t lo = std::min(rows, b.s0 * side_[last]);
+        const std::int64_t hi = std::min(rows, b.s1 * side_[last]);
+        first = static_cast<std::uint64_t>(lo * stride_[last]);
+        count = static_cast<std::uint64_t>((hi - lo) * stride_[last]);
+      } else {
+        // Sections of one cell per axis: those inside the grid's shape are consecutive runs of
+        // the axes below the cut, in the grid's order too.
+        bool any = false;
+        for (int s = b.s0; s < b.s1; ++s) {
+          std::uint64_t rest = static_cast<std::uint64_t>(s), at = 0;
+          bool inside = true;
+          for (int a = slabs.cut_axis; a < dims_; ++a) {
+            const auto c = static_cast<std::int64_t>(rest % layout.tiles(a));
+            rest /= layout.tiles(a);
+            inside = inside && c < field.size(a);
+            at += static_cast<std::uint64_t>(c * stride_[a]);
+          }
+          if (!inside) continue;
+          if (!any) first = at;
+          any = true;
+          count += static_cast<std::uint64_t>(stride_[slabs.cut_axis]);
+        }
+      }
       base_[j] = at - static_cast<std::int64_t>(first);
       if (count) out.runs.push_back({first, count});
       at += static_cast<std::int64_t>(count);
@@ -212,11 +261,17 @@ class DistanceWriter {
   V* values_ = nullptr;
 };
 
-// Blocks of about this many per worker when block_layers is left to the engine (< 0).
+// Blocks of about this many per worker when block_sections is left to the engine (< 0).
 inline constexpr int kBlocksPerWorker = 4;
+// The cut moves below the last axis while it has fewer sections than this per worker.
+inline constexpr int kSectionsPerWorker = 4 * kBlocksPerWorker;
+
+// The cut axis for `workers` ranks x threads: the last axis, or the highest one below it (of
+// one cell per tile) whose sections number at least kSectionsPerWorker per worker.
+int cut_axis_for(const TileLayout& layout, int workers);
 
 SlabMap plan_slabs(const ObstacleSource& field, const TileLayout& layout, int rank, int ranks,
-                   int threads, int block_layers);
+                   int threads, int block_sections);
 
 // The lattice moves as coordinate offsets, in one fixed order (the walk back picks the first
 // legal predecessor in it, so paths do not depend on ranks or threads): one-axis steps, then

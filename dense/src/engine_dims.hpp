@@ -62,7 +62,7 @@ Result run_shape(const ObstacleSource& field, const Query& q, SlabTransport& tr)
   const TileLayout layout(D, field.extent(), K);
   const FreeWindows windows(field, layout, max_word_steps(q, D));
   const SlabMap slabs =
-      plan_slabs(field, layout, tr.rank(), tr.ranks(), std::max(1, q.threads), q.block_layers);
+      plan_slabs(field, layout, tr.rank(), tr.ranks(), std::max(1, q.threads), q.block_sections);
   double free = 0.0;
   for (double w : free_states_per_layer(field, layout)) free += w;
   const auto free_states = static_cast<std::uint64_t>(free + 0.5);
@@ -89,8 +89,10 @@ Result run_shape(const ObstacleSource& field, const Query& q, SlabTransport& tr)
   f.tiles = layout.tile_count();
   f.threads = slabs.threads;
   f.ranks = tr.ranks();
-  f.rank_layers = slabs.rank_layers;
-  f.block_layers = slabs.block_layers;
+  f.cut_axis = slabs.cut_axis;
+  f.rank_sections = slabs.rank_sections;
+  f.block_sections = slabs.block_sections;
+  f.rank_peers = gather_ranks(tr, static_cast<int>(slabs.peers.size()));
   f.blocks = static_cast<int>(slabs.blocks.size());
   f.table_bytes = windows.bytes();
   // Every window mask of the table answers 64 validity questions of the field, once.

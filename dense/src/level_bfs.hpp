@@ -12,7 +12,7 @@
 // clears its bit; a target's new states get the next level's code, join its pending word and
 // set its bit in the next bitmap. No tile without pending states is touched, and no list of
 // entries is kept: the work and the memory traffic of a level are those of its frontier's
-// tiles and their neighbours. Targets in the next block either side that another thread or
+// tiles and their neighbours. Targets in a neighbouring block that another thread or
 // rank holds go to an outbox, applied by their owner after the driver's barrier.
 #include <limits>
 
@@ -44,7 +44,7 @@ class LevelBfs final : public SuperstepAlgorithm {
     for (int t = 0; t < T; ++t) {
       for (ZeroedWords& active : threads_[t].active)
         active = ZeroedWords((slabs_.thread_tiles[t] + 63) / 64);
-      threads_[t].out_local.resize(T);
+      threads_[t].size_for(slabs_);
       threads_[t].id = t;
     }
     for (std::size_t j = 0; j < slabs_.blocks.size(); ++j)
@@ -115,7 +115,7 @@ class LevelBfs final : public SuperstepAlgorithm {
           ++me.active_now;
           c[2] &= ~f;
           if (field_run_) distances_.write(layout_, j, tile, f, level);
-          expand(me, j, b, tile, f, next, next_active);
+          expand(me, b, tile, f, next, next_active);
         }
         if ((++n & 15) == 0 && ctl.poll()) return;
       }
@@ -148,12 +148,11 @@ class LevelBfs final : public SuperstepAlgorithm {
     me.fresh = 0;
     me.active_now = 0;
   }
-  void send_halo(std::vector<std::byte>& down, std::vector<std::byte>& up) override {
-    HaloSwap<Entry>::send(threads_, down, up);
+  void send_halo(std::vector<std::vector<std::byte>>& to) override {
+    halo_.send(threads_, slabs_.peers.size(), to);
   }
-  void receive_halo(const std::vector<std::byte>& from_below,
-                    const std::vector<std::byte>& from_above) override {
-    halo_.receive(slabs_, from_below, from_above, inbox_);
+  void receive_halo(const std::vector<std::vector<std::byte>>& from) override {
+    halo_.receive(slabs_, from, inbox_);
   }
   double next_key(const Decision&) const override { return 0.0; }
   const char* progress_unit() const override { return "level"; }
@@ -274,8 +273,8 @@ class LevelBfs final : public SuperstepAlgorithm {
     if (u == goal_tile_ && (fresh & goal_bit_)) me.goal_hit = true;
   }
 
-  [[gnu::always_inline]] inline void expand(Thread& me, int j, const Block& b, std::uint64_t tile,
-                                            Word f, const Code& next, ZeroedWords& next_active) {
+  [[gnu::always_inline]] inline void expand(Thread& me, const Block& b, std::uint64_t tile, Word f,
+                                            const Code& next, ZeroedWords& next_active) {
     int t[kMaxDims];
     layout_.tile_coords(tile, t);
     FreeWindows::At at;
@@ -289,15 +288,14 @@ class LevelBfs final : public SuperstepAlgorithm {
           const std::uint64_t u = tile + static_cast<std::uint64_t>(delta);
           if (rel + static_cast<std::uint64_t>(delta) < span)  // inside the block (unsigned)
             return apply_at(me, b, base + kWordsPerTile * delta, u, bits, next, next_active);
-          // The next block down or up (a move crosses one layer at most).
-          const int to = u < b.lo ? j - 1 : j + 1;
-          const Block& nb = slabs_.blocks[to];
+          // Another block: a neighbouring section's (slab_plan.hpp).
+          const Block& nb = slabs_.of_tile(u);
           if (nb.rank == slabs_.rank && nb.thread == me.id)
             apply(me, nb, u, bits, next, next_active);  // this thread's too: no one else writes it
           else if (nb.rank == slabs_.rank)
             me.out_local[nb.thread].push_back({u, bits});
           else
-            (to < j ? me.out_down : me.out_up).push_back({u, bits});
+            me.out_peer[slabs_.peer_slot[nb.rank]].push_back({u, bits});
         });
   }
 
@@ -327,7 +325,7 @@ class LevelBfs final : public SuperstepAlgorithm {
           y[a] = x[a] - offsets[j][a];
           inside = inside && y[a] >= 0 && y[a] < layout_.extent();
         }
-        if (!inside || !slabs_.holds_layer(layout_.layer_of(std::span<const int>(y, D)))) continue;
+        if (!inside || !slabs_.holds_tile(layout_.tile_of(std::span<const int>(y, D)))) continue;
         if (code_at(y) != want || !legal_move(field_, y, offsets[j])) continue;
         best = static_cast<double>(j);
         break;

@@ -26,7 +26,68 @@ std::vector<double> occupancy_free_per_layer(const OccupancyGrid& grid, const Ti
   return layers;
 }
 
+// The tile coordinates of section `s` on the axes from `cut` up (one cell per tile there).
+void section_coords(const TileLayout& layout, int cut, std::uint64_t s, int* c) {
+  for (int a = cut; a < layout.dims(); ++a) {
+    c[a] = static_cast<int>(s % static_cast<std::uint64_t>(layout.tiles(a)));
+    s /= static_cast<std::uint64_t>(layout.tiles(a));
+  }
+}
+
+std::uint64_t section_count(const TileLayout& layout, int cut) {
+  std::uint64_t n = 1;
+  for (int a = cut; a < layout.dims(); ++a) n *= static_cast<std::uint64_t>(layout.tiles(a));
+  return n;
+}
+
 }  // namespace
+
+std::vector<double> free_states_per_section(const ObstacleSource& source, const TileLayout& layout,
+                                            int cut) {
+  const int dims = layout.dims();
+  if (cut == dims - 1) return free_states_per_layer(source, layout);
+  if (cut < layout.in_tile_axes() || cut >= dims)
+    throw std::logic_error("free_states_per_section: a cut inside a tile");
+  std::vector<double> sections(section_count(layout, cut), 0.0);
+  int c[kMaxDims] = {};
+  if (source.is_occupancy()) {
+    // A section inside the grid's shape is one run of stride(cut) bits.
+    const OccupancyGrid& grid = source.occupancy();
+    const auto run = static_cast<std::uint64_t>(grid.stride(cut));
+    for (std::uint64_t s = 0; s < sections.size(); ++s) {
+      section_coords(layout, cut, s, c);
+      std::uint64_t begin = 0;
+      bool inside = true;
+      for (int a = cut; a < dims; ++a) {
+        inside = inside && c[a] < grid.size(a);
+        begin += static_cast<std::uint64_t>(c[a]) * static_cast<std::uint64_t>(grid.stride(a));
+      }
+      if (inside) sections[s] = static_cast<double>(grid.count_free(begin, begin + run));
+    }
+    return sections;
+  }
+  const GogField& field = source.gog();
+  // Cells of the axes below the cut by level sum, then those below each possible sum.
+  std::vector<double> sums(1, 1.0);
+  for (int a = 0; a < cut; ++a) {
+    double hist[4] = {0, 0, 0, 0};
+    const std::uint8_t* table = field.level_table(a);
+    for (int x = 0; x < field.extent(); ++x) hist[table[x]] += 1.0;
+    std::vector<double> next(sums.size() + 3, 0.0);
+    for (std::size_t i = 0; i < sums.size(); ++i)
+      for (int l = 0; l < 4; ++l) next[i + l] += sums[i] * hist[l];
+    sums.swap(next);
+  }
+  std::vector<double> below(sums.size() + 1, 0.0);
+  for (std::size_t i = 0; i < sums.size(); ++i) below[i + 1] = below[i] + sums[i];
+  for (std::uint64_t s = 0; s < sections.size(); ++s) {
+    section_coords(layout, cut, s, c);
+    int room = field.threshold();
+    for (int a = cut; a < dims; ++a) room -= field.level_table(a)[c[a]];
+    sections[s] = room <= 0 ? 0.0 : below[std::min<std::size_t>(room, sums.size())];
+  }
+  return sections;
+}
 
 std::vector<double> free_states_per_layer(const ObstacleSource& source, const TileLayout& layout) {
   if (source.is_occupancy()) return occupancy_free_per_layer(source.occupancy(), layout);

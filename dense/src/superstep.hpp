@@ -15,7 +15,7 @@
 //                      to outboxes. Thread 0 also polls the query's stop and the checkpoint
 //                      schedule (Stop's contract: one thread evaluates the condition).
 //   barrier
-//   [several ranks]    the master thread swaps the rank's outboxes with the neighbouring ranks
+//   [several ranks]    the master thread swaps the rank's outboxes with its peer ranks
 //   barrier            (send_halo / receive_halo)
 //   receive(thread)    apply what the other threads and ranks sent this thread
 //   publish            this thread's StepReport, halt and (thread 0) checkpoint request, in the
@@ -144,10 +144,10 @@ class SuperstepAlgorithm {
   virtual StepReport report(int thread) const = 0;
   virtual std::uint64_t list_bytes(int thread) const = 0;
   virtual void next_step(int thread) = 0;
-  // The master thread, several ranks only: this rank's outboxes, and what came back.
-  virtual void send_halo(std::vector<std::byte>& down, std::vector<std::byte>& up) = 0;
-  virtual void receive_halo(const std::vector<std::byte>& from_below,
-                            const std::vector<std::byte>& from_above) = 0;
+  // The master thread, several ranks only: this rank's outboxes, one buffer per peer
+  // (SlabMap::peers), and what the peers sent back, in the same order.
+  virtual void send_halo(std::vector<std::vector<std::byte>>& to) = 0;
+  virtual void receive_halo(const std::vector<std::vector<std::byte>>& from) = 0;
   // The key of the step after a decision (Dijkstra's next bucket; BFS: 0).
   virtual double next_key(const Decision& d) const = 0;
   // The progress line's unit and value ("level", 17).

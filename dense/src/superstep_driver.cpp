@@ -146,7 +146,7 @@ Result run_supersteps(SuperstepAlgorithm& alg, const ObstacleSource& field, cons
   Status status = Status::no_path;
   bool solved = trivial, failed = false;
   const std::uint64_t budget = q.memory_budget;
-  std::vector<std::byte> down, up, from_below, from_above;  // the halo swap's buffers
+  std::vector<std::vector<std::byte>> to_peers, from_peers;  // the halo swap's buffers
   int team = T;
   // Whether this rank trades with others: then the master thread runs the halo swap and the
   // ranks' reduction, each between barriers. Alone, every thread takes the decision itself
@@ -184,10 +184,9 @@ Result run_supersteps(SuperstepAlgorithm& alg, const ObstacleSource& field, cons
         if (!alone) {
 #pragma omp master
           try {
-            alg.send_halo(down, up);
-            tr.exchange(slabs.below, as_bytes_of(down), slabs.above, as_bytes_of(up), from_below,
-                        from_above);
-            alg.receive_halo(from_below, from_above);
+            alg.send_halo(to_peers);
+            tr.exchange(slabs.peers, to_peers, from_peers);
+            alg.receive_halo(from_peers);
           } catch (...) {
             threads.front().control.caught();
           }

@@ -16,10 +16,11 @@ nlohmann::json distributed_json(const GridReport& report) {
   nlohmann::json d;
   if (report.dense)
     d["ownership"] = {{"dense_slabs",
-                       {{"axis", dims - 1},
-                        {"block_layers", report.dense->block_layers},
+                       {{"axis", report.dense->cut_axis},
+                        {"block_sections", report.dense->block_sections},
                         {"blocks", report.dense->blocks},
-                        {"rank_layers", report.dense->rank_layers}}}};
+                        {"rank_sections", report.dense->rank_sections},
+                        {"rank_peers", report.dense->rank_peers}}}};
   else if (!r.prefix_cuts.empty())
     d["ownership"] = {
         {"prefix_cuts", {{"axes", partition::cut_axes(dims)}, {"at", r.prefix_cuts}}}};
@@ -89,9 +90,11 @@ nlohmann::json dense_json(const dense::Figures& f) {
   d["active_tiles"] = f.active_tiles;
   d["step_active_tiles"] = f.step_active_tiles;
   d["threads"] = f.threads;
-  d["block_layers"] = f.block_layers;
+  d["cut_axis"] = f.cut_axis;
+  d["block_sections"] = f.block_sections;
   d["blocks"] = f.blocks;
-  d["rank_layers"] = f.rank_layers;
+  d["rank_sections"] = f.rank_sections;
+  d["rank_peers"] = f.rank_peers;
   d["halo_messages"] = f.halo_messages;
   d["halo_bytes"] = f.halo_bytes;
   d["exchange_ms"] = f.exchange_ms;

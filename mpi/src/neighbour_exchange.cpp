@@ -2,16 +2,16 @@
 
 #include <climits>
 #include <cstdint>
+#include <stdexcept>
 
 #include "hpcplan/core/error.hpp"
 
 namespace hpcplan::mpi {
 namespace {
 
-// Tags of this exchange only, apart from the other transports' messages, one per direction:
-// with two ranks the rank below is also the rank above, and the tag tells which buffer is which.
-constexpr int kSizeDown = 7101, kSizeUp = 7102;  // sizes sent to the rank below / above
-constexpr int kDataDown = 7103, kDataUp = 7104;
+// Tags of this exchange only, apart from the other transports' messages. A pair of ranks
+// trades one buffer each way per exchange, so the tag need not say which buffer it is.
+constexpr int kSize = 7101, kData = 7103;
 
 int checked_count(std::size_t bytes) {
   if (bytes > static_cast<std::size_t>(INT_MAX))
@@ -21,47 +21,44 @@ int checked_count(std::size_t bytes) {
 
 }  // namespace
 
-void NeighbourExchange::exchange(int below, std::span<const std::byte> to_below, int above,
-                                 std::span<const std::byte> to_above,
-                                 std::vector<std::byte>& from_below,
-                                 std::vector<std::byte>& from_above) {
+void NeighbourExchange::exchange(std::span<const int> peers,
+                                 const std::vector<std::vector<std::byte>>& to,
+                                 std::vector<std::vector<std::byte>>& from) {
+  if (to.size() != peers.size())
+    throw std::logic_error("halo exchange: one buffer per neighbour expected");
   const MPI_Comm comm = comm_.handle();
-  std::uint64_t send_size[2] = {to_below.size(), to_above.size()};
-  std::uint64_t recv_size[2] = {0, 0};
-  const int peer[2] = {below, above};
-  MPI_Request req[4];
-  int n = 0;
-  // side 0: the rank below (we send it "down", it sent us "up"); side 1: the rank above.
-  const int size_out[2] = {kSizeDown, kSizeUp}, size_in[2] = {kSizeUp, kSizeDown};
-  const int data_out[2] = {kDataDown, kDataUp}, data_in[2] = {kDataUp, kDataDown};
-  for (int side = 0; side < 2; ++side) {
-    if (peer[side] < 0) continue;
-    MPI_Irecv(&recv_size[side], 1, MPI_UINT64_T, peer[side], size_in[side], comm, &req[n++]);
-    MPI_Isend(&send_size[side], 1, MPI_UINT64_T, peer[side], size_out[side], comm, &req[n++]);
+  const std::size_t n = peers.size();
+  std::vector<std::uint64_t> send_size(n), recv_size(n, 0);
+  std::vector<MPI_Request> req;
+  req.reserve(2 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    send_size[i] = to[i].size();
+    req.emplace_back();
+    MPI_Irecv(&recv_size[i], 1, MPI_UINT64_T, peers[i], kSize, comm, &req.back());
+    req.emplace_back();
+    MPI_Isend(&send_size[i], 1, MPI_UINT64_T, peers[i], kSize, comm, &req.back());
   }
-  MPI_Waitall(n, req, MPI_STATUSES_IGNORE);
-  from_below.resize(below >= 0 ? recv_size[0] : 0);
-  from_above.resize(above >= 0 ? recv_size[1] : 0);
-  std::vector<std::byte>* into[2] = {&from_below, &from_above};
-  const std::span<const std::byte> out[2] = {to_below, to_above};
-  n = 0;
-  for (int side = 0; side < 2; ++side) {
-    if (peer[side] < 0) continue;
-    if (recv_size[side] > 0)
-      MPI_Irecv(into[side]->data(), checked_count(recv_size[side]), MPI_BYTE, peer[side],
-                data_in[side], comm, &req[n++]);
-    if (!out[side].empty()) {
-      MPI_Isend(out[side].data(), checked_count(out[side].size()), MPI_BYTE, peer[side],
-                data_out[side], comm, &req[n++]);
-      ++traffic_.messages_sent;
-      traffic_.bytes_sent += out[side].size();
-    }
-    if (recv_size[side] > 0) {
+  MPI_Waitall(static_cast<int>(req.size()), req.data(), MPI_STATUSES_IGNORE);
+  from.resize(n);
+  req.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    from[i].resize(recv_size[i]);
+    if (recv_size[i] > 0) {
+      req.emplace_back();
+      MPI_Irecv(from[i].data(), checked_count(recv_size[i]), MPI_BYTE, peers[i], kData, comm,
+                &req.back());
       ++traffic_.messages_received;
-      traffic_.bytes_received += recv_size[side];
+      traffic_.bytes_received += recv_size[i];
+    }
+    if (!to[i].empty()) {
+      req.emplace_back();
+      MPI_Isend(to[i].data(), checked_count(to[i].size()), MPI_BYTE, peers[i], kData, comm,
+                &req.back());
+      ++traffic_.messages_sent;
+      traffic_.bytes_sent += to[i].size();
     }
   }
-  MPI_Waitall(n, req, MPI_STATUSES_IGNORE);
+  MPI_Waitall(static_cast<int>(req.size()), req.data(), MPI_STATUSES_IGNORE);
 }
 
 }  // namespace hpcplan::mpi

@@ -96,7 +96,7 @@ dense::Query dense_query(const ObstacleSource& field, const GridProblem& problem
   q.connectivity = problem.connectivity;
   q.threads = dense_threads(field, o, ranks_sharing_cpus);
   q.keep_path = o.keep_path;
-  q.block_layers = o.contiguous_slabs ? 0 : o.slab_layers > 0 ? o.slab_layers : -1;
+  q.block_sections = o.contiguous_slabs ? 0 : o.slab_layers > 0 ? o.slab_layers : -1;
   q.memory_budget = dense_memory_budget(o, report);
   q.stop = Stop::after(o.time_limit_s, o.cancel);
   if (o.stop_when) q.stop.also_when(o.stop_when);

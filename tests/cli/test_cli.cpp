@@ -200,15 +200,15 @@ TEST(Cli, DenseEngineRunsBfsAndDijkstra) {
     for (const auto* j : {&ja, &jd, &jc}) {
       EXPECT_EQ((*j)["visited_map"], "dense_bitmap");
       for (const char* key : {"tile", "tiles", "free_states", "reached", "bytes_per_rank",
-                              "bytes_total", "levels", "threads", "blocks", "block_layers"})
+                              "bytes_total", "levels", "threads", "blocks", "block_sections"})
         EXPECT_TRUE((*j)["dense"].contains(key)) << key;
       EXPECT_EQ((*j)["hops"], js["hops"]) << algo;
       EXPECT_EQ((*j)["path"].size(), (*j)["hops"].get<std::size_t>() + 1);
       EXPECT_EQ((*j)["path"], ja["path"]) << algo << ": the same path whatever the layout";
     }
-    EXPECT_EQ(jd["dense"]["block_layers"], 2);
+    EXPECT_EQ(jd["dense"]["block_sections"], 2);
     EXPECT_EQ(jd["dense"]["threads"], 2);
-    EXPECT_EQ(jc["dense"]["block_layers"], 0);
+    EXPECT_EQ(jc["dense"]["block_sections"], 0);
     if (std::string(algo) == "dijkstra") {
       EXPECT_NEAR(ja["cost"], js["cost"], 1e-9);
     }

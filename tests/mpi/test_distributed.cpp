@@ -389,7 +389,7 @@ TEST(DenseSlabs, EveryRankCountGivesTheSerialAnswerPathAndCounts) {
           EXPECT_EQ(r.result.counters.expanded, s.result.counters.expanded);
           EXPECT_EQ(r.result.counters.generated, s.result.counters.generated);
           ASSERT_TRUE(r.dense.has_value());
-          EXPECT_EQ(r.dense->rank_layers.size(), static_cast<std::size_t>(g_comm->size()));
+          EXPECT_EQ(r.dense->rank_sections.size(), static_cast<std::size_t>(g_comm->size()));
           std::uint64_t expanded = 0;
           for (const auto& k : r.distribution.per_rank) expanded += k.expanded;
           EXPECT_EQ(expanded, r.result.counters.expanded);

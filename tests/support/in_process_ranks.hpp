@@ -15,6 +15,8 @@
 #include <functional>
 #include <limits>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -25,7 +27,7 @@ namespace hpcplan::test_support {
 class InProcessRanks {
  public:
   explicit InProcessRanks(int ranks)
-      : ranks_(ranks), sync_(ranks), out_(ranks), down_(ranks), up_(ranks) {}
+      : ranks_(ranks), sync_(ranks), out_(ranks), sent_(ranks), named_(ranks) {}
   int ranks() const { return ranks_; }
 
   // Runs body(rank) on `ranks` threads at once and joins them. An exception on any rank thread
@@ -40,10 +42,10 @@ class InProcessRanks {
   friend class InProcessTransport;
   int ranks_;
   std::barrier<> sync_;
-  std::vector<std::vector<std::byte>> out_;   // per rank: its allgather contribution
-  std::vector<std::vector<std::byte>> down_;  // per rank: what it sends to the rank below
-  std::vector<std::vector<std::byte>> up_;    // per rank: what it sends to the rank above
-  std::vector<int> below_ = std::vector<int>(ranks_, -1), above_ = std::vector<int>(ranks_, -1);
+  std::vector<std::vector<std::byte>> out_;  // per rank: its allgather contribution
+  // Per rank: what it sends each rank (by rank), and the peers it named in the exchange.
+  std::vector<std::vector<std::vector<std::byte>>> sent_;
+  std::vector<std::vector<int>> named_;
 };
 
 class InProcessTransport final : public dense::SlabTransport {
@@ -53,23 +55,33 @@ class InProcessTransport final : public dense::SlabTransport {
   int ranks() const override { return hub_.ranks_; }
   int ranks_on_node() const override { return hub_.ranks_; }
 
-  void exchange(int below, std::span<const std::byte> down, int above,
-                std::span<const std::byte> up, std::vector<std::byte>& from_below,
-                std::vector<std::byte>& from_above) override {
-    hub_.down_[rank_].assign(down.begin(), down.end());
-    hub_.up_[rank_].assign(up.begin(), up.end());
-    hub_.below_[rank_] = below;
-    hub_.above_[rank_] = above;
+  // Each peer's buffer; a rank receives only from the peers it names, and each of them must
+  // name it back (a one-sided pair is the engine's bug, and fails the test).
+  void exchange(std::span<const int> peers, const std::vector<std::vector<std::byte>>& to,
+                std::vector<std::vector<std::byte>>& from) override {
+    auto& mine = hub_.sent_[rank_];
+    mine.assign(hub_.ranks_, {});
+    for (std::size_t i = 0; i < peers.size(); ++i) {
+      mine[peers[i]] = to[i];
+      if (!to[i].empty()) {
+        ++messages_sent;
+        bytes_sent += to[i].size();
+      }
+    }
+    hub_.named_[rank_].assign(peers.begin(), peers.end());
     hub_.sync_.arrive_and_wait();
-    // What the rank below sent up to this one, and what the rank above sent down; a rank
-    // sends only to the neighbours it names, and they must name it back.
-    from_below.clear();
-    from_above.clear();
-    if (below >= 0 && hub_.above_[below] == rank_) from_below = hub_.up_[below];
-    if (above >= 0 && hub_.below_[above] == rank_) from_above = hub_.down_[above];
-    messages_sent += (below >= 0) + (above >= 0);
-    bytes_sent += down.size() * (below >= 0) + up.size() * (above >= 0);
+    from.assign(peers.size(), {});
+    int one_sided = -1;
+    for (std::size_t i = 0; i < peers.size(); ++i) {
+      const auto& theirs = hub_.named_[peers[i]];
+      if (std::find(theirs.begin(), theirs.end(), rank_) == theirs.end()) one_sided = peers[i];
+      from[i] = hub_.sent_[peers[i]][rank_];
+    }
     hub_.sync_.arrive_and_wait();
+    // Thrown after the barrier, so that the other ranks are not left waiting at it.
+    if (one_sided >= 0)
+      throw std::logic_error("in-process exchange: rank " + std::to_string(rank_) + " names " +
+                             std::to_string(one_sided) + ", which does not name it");
   }
   void sum(std::span<std::uint64_t> v) override {
     reduce(v, [](std::uint64_t a, std::uint64_t b) { return a + b; });

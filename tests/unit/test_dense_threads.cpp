@@ -79,12 +79,12 @@ TEST(DenseThreads, EveryThreadCountGivesTheOneThreadAnswer) {
       const dense::Result one = dense::search(field, corner_query(field, a, 1), local);
       ASSERT_EQ(one.status, Status::solved);
       for (int threads : {2, 3, 4})
-        for (int block_layers : {-1, 0, 1}) {
+        for (int block_sections : {-1, 0, 1}) {
           dense::Query q = corner_query(field, a, threads);
-          q.block_layers = block_layers;
+          q.block_sections = block_sections;
           const dense::Result r = dense::search(field, q, local);
           SCOPED_TRACE(::testing::Message()
-                       << d << "D threads " << threads << " blocks " << block_layers);
+                       << d << "D threads " << threads << " blocks " << block_sections);
           EXPECT_EQ(r.status, one.status);
           EXPECT_EQ(r.cost, one.cost);
           EXPECT_EQ(r.path, one.path);
@@ -117,7 +117,7 @@ TEST(DenseThreads, TwoInProcessRanksOfTwoThreadsGiveTheOneRankAnswer) {
         try {
           test_support::InProcessTransport tr(hub, rank);
           dense::Query q = corner_query(field, a, 2);
-          q.block_layers = 2;  // several blocks per rank: faces between threads and ranks
+          q.block_sections = 2;  // several blocks per rank: faces between threads and ranks
           edit(q);
           results[rank] = dense::search(field, q, tr);
         } catch (const std::exception& e) {
@@ -209,7 +209,7 @@ TEST(DenseThreads, TheStopConditionRunsOnTheCallingThreadOnly) {
     std::set<std::thread::id> callers;
     int calls = 0;
     dense::Query q = corner_query(field, a, 2);
-    q.block_layers = 1;  // both threads busy every level
+    q.block_sections = 1;  // both threads busy every level
     q.stop.also_when([&] {
       const std::lock_guard lock(m);
       callers.insert(std::this_thread::get_id());

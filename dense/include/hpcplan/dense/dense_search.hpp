@@ -64,10 +64,11 @@ struct Query {
   Algorithm algorithm = Algorithm::bfs;
   Connectivity connectivity = Connectivity::seed_pairs;
   int threads = 1;  // OpenMP threads of this rank (>= 1)
-  // Layers per block dealt round the ranks and threads; 0: one contiguous slab per rank and
-  // thread, balanced by free states; < 0: about 4 blocks per thread, at least 4 layers each (the
-  // default).
-  int block_layers = -1;
+  // Sections per block dealt round the ranks and threads (a section is a layer along the last
+  // axis while there are enough of them for every worker, else a piece of a layer: see
+  // Figures::cut_axis); 0: one contiguous slab per rank and thread, balanced by free states;
+  // < 0: about 4 blocks per thread, at least 4 sections each (the default).
+  int block_sections = -1;
   bool keep_path = false;           // Dijkstra: record classes and walk the path back
                                     // (BFS always walks it, for its cost, and returns it)
   std::uint64_t memory_budget = 0;  // bytes this rank may use; 0 = no limit
@@ -103,9 +104,14 @@ struct Figures {
   std::uint64_t active_tiles = 0;
   int threads = 1;
   int ranks = 1;
-  int block_layers = 0;             // layers per dealt block; 0: contiguous slabs
-  int blocks = 1;                   // blocks of layers
-  std::vector<int> rank_layers;     // layers each rank holds
+  // The decomposition: blocks are runs of sections, the tiles sharing their coordinates on
+  // the cut axis and every axis above it (a layer when the cut is the last axis; a row of a
+  // layer when it is the one below).
+  int cut_axis = 0;
+  int block_sections = 0;           // sections per dealt block; 0: contiguous slabs
+  int blocks = 1;                   // blocks of sections
+  std::vector<int> rank_sections;   // sections each rank holds
+  std::vector<int> rank_peers;      // the ranks each rank trades halos with
   std::uint64_t halo_messages = 0;  // summed over ranks
   std::uint64_t halo_bytes = 0;
   double exchange_ms = 0.0;            // the slowest rank's time in exchanges and reductions

@@ -1,7 +1,8 @@
 #pragma once
-// What the dense engine needs from the ranks around it, and nothing more: each rank holds one
-// slab of layers along the last axis, so a level (or a bucket of cost classes) ends with one
-// exchange with the two neighbouring ranks and one small reduction over all. The engine never
+// What the dense engine needs from the ranks around it, and nothing more: each rank holds
+// blocks of the lattice, so a level (or a bucket of cost classes) ends with one exchange with
+// the ranks holding the blocks next to its own (its peers: two for slabs along the last axis,
+// more for blocks cut over several axes) and one small reduction over all. The engine never
 // calls MPI; the MPI implementation lives in the distributed layer (as Graph500's reference
 // BFS keeps its communication apart from the algorithm), and LocalTransport is the one-rank
 // case, which is the serial engine.
@@ -23,11 +24,11 @@ class SlabTransport {
   virtual int ranks() const = 0;
   // Ranks sharing this rank's node (they share its memory budget).
   virtual int ranks_on_node() const { return 1; }
-  // Sends `down` to rank `below` and `up` to rank `above` (-1: none; the nearest ranks whose
-  // slabs are not empty) and returns what those ranks sent this one.
-  virtual void exchange(int below, std::span<const std::byte> down, int above,
-                        std::span<const std::byte> up, std::vector<std::byte>& from_below,
-                        std::vector<std::byte>& from_above) = 0;
+  // Sends to[i] to rank peers[i] and returns in from[i] what that rank sent this one (resized
+  // to peers.size()). Peers are distinct ranks other than this one, and the relation is
+  // symmetric: a rank that names r is named by r in the same exchange.
+  virtual void exchange(std::span<const int> peers, const std::vector<std::vector<std::byte>>& to,
+                        std::vector<std::vector<std::byte>>& from) = 0;
   // Element-wise over all ranks, in place.
   virtual void sum(std::span<std::uint64_t> values) = 0;
   virtual void max(std::span<std::uint64_t> values) = 0;
@@ -67,10 +68,9 @@ class LocalTransport final : public SlabTransport {
  public:
   int rank() const override { return 0; }
   int ranks() const override { return 1; }
-  void exchange(int, std::span<const std::byte>, int, std::span<const std::byte>,
-                std::vector<std::byte>& from_below, std::vector<std::byte>& from_above) override {
-    from_below.clear();
-    from_above.clear();
+  void exchange(std::span<const int> peers, const std::vector<std::vector<std::byte>>&,
+                std::vector<std::vector<std::byte>>& from) override {
+    from.assign(peers.size(), {});
   }
   void sum(std::span<std::uint64_t>) override {}
   void max(std::span<std::uint64_t>) override {}

@@ -1,5 +1,5 @@
 #pragma once
-// The dense engine's slab transport over MPI: the halo exchange with the neighbouring ranks
+// The dense engine's slab transport over MPI: the halo exchange with the peer ranks
 // (mpi::NeighbourExchange) and the per-level reductions on the communicator. The dense engine
 // itself never sees MPI.
 //
@@ -17,11 +17,10 @@ class MpiSlabTransport final : public dense::SlabTransport {
   int rank() const override { return comm_.rank(); }
   int ranks() const override { return comm_.size(); }
   int ranks_on_node() const override { return comm_.ranks_on_node(); }
-  void exchange(int below, std::span<const std::byte> down, int above,
-                std::span<const std::byte> up, std::vector<std::byte>& from_below,
-                std::vector<std::byte>& from_above) override {
+  void exchange(std::span<const int> peers, const std::vector<std::vector<std::byte>>& to,
+                std::vector<std::vector<std::byte>>& from) override {
     const Stopwatch clock;
-    halo_.exchange(below, down, above, up, from_below, from_above);
+    halo_.exchange(peers, to, from);
     messages_sent = halo_.traffic().messages_sent;
     bytes_sent = halo_.traffic().bytes_sent;
     exchange_ms += clock.milliseconds();

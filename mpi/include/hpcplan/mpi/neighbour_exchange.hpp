@@ -1,9 +1,10 @@
 #pragma once
-// The halo exchange of a chain of slabs: each rank swaps one byte buffer with the rank below
-// and one with the rank above (either may be absent), as stencil codes swap their halo layers.
-// Non-blocking: the sizes go first (one pair of Isend/Irecv per neighbour), then the data; a
-// rank waits only for its own two neighbours, never for the whole job. Collective over the
-// pairs: a rank that names r as its neighbour below is named by r as its neighbour above.
+// The halo exchange of a decomposed lattice: each rank swaps one byte buffer with each of its
+// neighbours (the ranks holding blocks next to its own: the rank below and the rank above for
+// a chain of slabs, more for blocks cut over several axes), as stencil codes swap their halo
+// faces. Non-blocking: the sizes go first (one pair of Isend/Irecv per neighbour), then the
+// data; a rank waits only for its own neighbours, never for the whole job. Collective over the
+// pairs: a rank that names r as a neighbour is named by r, once.
 //
 // Threads: one thread of each rank calls it (MPI_THREAD_FUNNELED).
 #include <cstddef>
@@ -18,10 +19,9 @@ namespace hpcplan::mpi {
 class NeighbourExchange {
  public:
   explicit NeighbourExchange(const Communicator& comm) : comm_(comm) {}
-  // below / above: neighbour ranks, or -1 for none.
-  void exchange(int below, std::span<const std::byte> to_below, int above,
-                std::span<const std::byte> to_above, std::vector<std::byte>& from_below,
-                std::vector<std::byte>& from_above);
+  // Sends to[i] to peers[i]; from[i] receives what peers[i] sent (resized to peers.size()).
+  void exchange(std::span<const int> peers, const std::vector<std::vector<std::byte>>& to,
+                std::vector<std::vector<std::byte>>& from);
   const Traffic& traffic() const { return traffic_; }
 
  private:
