@@ -45,6 +45,58 @@ int in_tile_axes(const ObstacleSource& field, const Query& q) {
 
 }  // namespace
 
+namespace {
+
+// A rank's bytes before its lists grow, for `tiles` tiles of the query's store.
+std::uint64_t rank_bytes(const Query& q, std::uint64_t table_bytes, std::uint64_t tiles,
+                         std::uint64_t section_tiles) {
+  std::uint64_t bytes = table_bytes;
+  if (q.algorithm == Algorithm::bfs) {
+    bytes += detail::LevelBfs<2, 2, detail::SeedKernel<2, 2>>::store_bytes(tiles);
+  } else {
+    bytes +=
+        detail::CostClassDijkstra<2, 2, detail::SeedKernel<2, 2>>::store_bytes(tiles, q.keep_path);
+  }
+  // A distance field's part: a 4-byte value per state of the rank's slab.
+  if (q.distances) bytes += tiles * 64 * 4;
+  // A first frontier: one section's tiles as entries.
+  bytes += section_tiles * sizeof(detail::Entry);
+  return bytes;
+}
+
+}  // namespace
+
+Decomposition describe_decomposition(const ObstacleSource& field, const Query& q, int ranks) {
+  const int dims = field.dims();
+  ranks = std::max(1, ranks);
+  if (!TileLayout::fits(dims, field.extent(), in_tile_axes(field, q)))
+    throw InputError("the lattice has more than 2^50 tiles: the dense engine cannot hold it");
+  const TileLayout layout(dims, field.extent(), in_tile_axes(field, q));
+  const std::uint64_t table = FreeWindows::table_bytes(field, layout, max_word_steps(q, dims));
+  Decomposition d;
+  double free = 0.0;
+  for (const double w : free_states_per_layer(field, layout)) free += w;
+  d.free_states = static_cast<std::uint64_t>(free + 0.5);
+  for (int r = 0; r < ranks; ++r) {
+    const detail::SlabMap plan = detail::plan_slabs(field, layout, r, ranks,
+                                                    std::max(1, q.threads), q.block_sections);
+    d.cut_axis = plan.cut_axis;
+    d.section_tiles = plan.section_tiles;
+    d.block_sections = plan.block_sections;
+    d.blocks = static_cast<int>(plan.blocks.size());
+    RankPlan p;
+    p.tiles = plan.store_tiles;
+    p.sections = plan.rank_sections[r];
+    p.peers = static_cast<int>(plan.peers.size());
+    p.ghost_tiles = plan.ghost_sections * plan.section_tiles;
+    p.planned_bytes = table == std::numeric_limits<std::uint64_t>::max()
+                          ? table
+                          : rank_bytes(q, table, plan.store_tiles, plan.section_tiles);
+    d.ranks.push_back(p);
+  }
+  return d;
+}
+
 std::uint64_t planned_bytes(const ObstacleSource& field, const Query& q, int ranks) {
   const int dims = field.dims();
   if (!TileLayout::fits(dims, field.extent(), in_tile_axes(field, q)))
@@ -58,19 +110,9 @@ std::uint64_t planned_bytes(const ObstacleSource& field, const Query& q, int ran
     tiles = std::max(tiles, plan.store_tiles);
     section_tiles = plan.section_tiles;
   }
-  std::uint64_t bytes = FreeWindows::table_bytes(field, layout, max_word_steps(q, dims));
-  if (bytes == std::numeric_limits<std::uint64_t>::max()) return bytes;
-  if (q.algorithm == Algorithm::bfs) {
-    bytes += detail::LevelBfs<2, 2, detail::SeedKernel<2, 2>>::store_bytes(tiles);
-  } else {
-    bytes +=
-        detail::CostClassDijkstra<2, 2, detail::SeedKernel<2, 2>>::store_bytes(tiles, q.keep_path);
-  }
-  // A distance field's part: a 4-byte value per state of the rank's slab.
-  if (q.distances) bytes += tiles * 64 * 4;
-  // A first frontier: one section's tiles as entries.
-  bytes += section_tiles * sizeof(detail::Entry);
-  return bytes;
+  const std::uint64_t table = FreeWindows::table_bytes(field, layout, max_word_steps(q, dims));
+  if (table == std::numeric_limits<std::uint64_t>::max()) return table;
+  return rank_bytes(q, table, tiles, section_tiles);
 }
 
 int usable_cpus() {

@@ -73,7 +73,7 @@ SlabMap plan_slabs(const ObstacleSource& field, const TileLayout& layout, int ra
   // The peers: owners of the sections next to this rank's own, over every axis of the cut.
   int k = dims - s.cut_axis, around = 1;
   for (int a = 0; a < k; ++a) around *= 3;
-  std::vector<char> peer(ranks, 0);
+  std::vector<char> peer(ranks, 0), ghost(ranks > 1 ? sections : 0, 0);
   for (const Block& b : s.blocks) {
     if (b.rank != rank || ranks == 1) continue;
     for (int z = b.s0; z < b.s1; ++z) {
@@ -91,7 +91,13 @@ SlabMap plan_slabs(const ObstacleSource& field, const TileLayout& layout, int ra
           n += x * scale;
           scale *= layout.tiles(a);
         }
-        if (inside) peer[s.blocks[s.section_block[n]].rank] = 1;
+        if (!inside) continue;
+        const int owner = s.blocks[s.section_block[n]].rank;
+        peer[owner] = 1;
+        if (owner != rank && !ghost[n]) {
+          ghost[n] = 1;
+          ++s.ghost_sections;
+        }
       }
     }
   }

@@ -86,6 +86,9 @@ struct SlabMap {
   std::vector<int> rank_sections;           // sections each rank holds
   std::vector<int> peers;                   // the ranks this one trades halos with, ascending
   std::vector<int> peer_slot;               // per rank: its index in peers, or -1
+  // Other ranks' sections next to this rank's own: the targets of its outgoing halo (at most
+  // one entry per tile of them per step, once merged).
+  std::uint64_t ghost_sections = 0;
 
   int block_index_of_tile(std::uint64_t tile) const { return section_block[tile / section_tiles]; }
   const Block& of_tile(std::uint64_t tile) const { return blocks[block_index_of_tile(tile)]; }

@@ -128,6 +128,28 @@ struct Result : hpcplan::Result<std::vector<int>> {
 // more tiles than TileLayout::kMaxTiles.
 std::uint64_t planned_bytes(const ObstacleSource& field, const Query& query, int ranks);
 
+// The decomposition a run of this query on `ranks` ranks (of query.threads threads each) would
+// use, rank by rank, computed without allocating the lattice: for sizing a job (memory per
+// rank, halo per level) before submitting it, and for the scaling model
+// (bench/dense_blocks.py).
+struct RankPlan {
+  std::uint64_t tiles = 0;          // tiles it holds
+  int sections = 0;                 // sections it holds
+  int peers = 0;                    // ranks it trades halos with
+  std::uint64_t ghost_tiles = 0;    // tiles of other ranks next to its own: a step sends at
+                                    // most one 16-byte entry (BFS) per tile of them
+  std::uint64_t planned_bytes = 0;  // what planned_bytes() counts, for this rank
+};
+struct Decomposition {
+  int cut_axis = 0;
+  std::uint64_t section_tiles = 0;
+  int block_sections = 0;
+  int blocks = 0;
+  std::uint64_t free_states = 0;  // of the whole lattice
+  std::vector<RankPlan> ranks;
+};
+Decomposition describe_decomposition(const ObstacleSource& field, const Query& query, int ranks);
+
 // The largest lattice dimension this build compiled the engine for: 16 unless it was configured
 // with -DHPCPLAN_DENSE_DIMS=N (search() refuses a higher one; --engine auto picks sparse there).
 int compiled_dims();
