@@ -13,12 +13,14 @@ ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
 
 
 def grid(binary, args, ranks=0, timeout=3600, who="bench"):
-    """`binary grid --json ARGS` (under `mpirun -np RANKS --bind-to core` when ranks > 0): the
-    JSON object, with its wall seconds and peak resident bytes as _wall_s and _rss_bytes.
-    Exits naming the command and its error line if it fails."""
+    """`binary grid --json ARGS` (under `mpirun -np RANKS --bind-to core` when ranks > 0, or
+    `--bind-to none` for more ranks than cores): the JSON object, with its wall seconds and peak
+    resident bytes as _wall_s and _rss_bytes. Exits naming the command and its error line if it
+    fails."""
     cmd = ["/usr/bin/time", "-f", "%e %M"]
     if ranks:
-        cmd += [MPIRUN, "-np", str(ranks), "--bind-to", "core"]
+        bind = "core" if ranks <= (os.cpu_count() or 1) else "none"
+        cmd += [MPIRUN, "-np", str(ranks), "--bind-to", bind]
     cmd += [binary, "grid", "--json", *args]
     p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=ENV)
     if p.returncode != 0:

@@ -52,10 +52,13 @@ struct ClassEntry {
   Word bits;
   ClassKey key;
 };
-// Halo entries merge when they name the same tile and class (HaloSwap).
+// Halo entries merge when they name the same tile and class (Outboxes::to_peer).
 inline std::tuple<std::uint64_t, std::int32_t, std::int32_t, std::int32_t, std::int32_t> halo_key(
     const ClassEntry& e) {
   return {e.tile, e.key.ones, e.key.root2, e.key.root3, e.key.hops};
+}
+inline std::uint64_t halo_hash(const ClassEntry& e) {
+  return e.tile ^ (static_cast<std::uint64_t>(e.key.hops) << 40);
 }
 
 template <int D, int K, class Kernel>
@@ -176,7 +179,7 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
     me.settled_at_step = me.settled;
   }
   void send_halo(std::vector<std::vector<std::byte>>& to) override {
-    halo_.send(threads_, slabs_.peers.size(), to);
+    HaloSwap<ClassEntry>::send(threads_, slabs_.peers.size(), to);
   }
   void receive_halo(const std::vector<std::vector<std::byte>>& from) override {
     halo_.receive(slabs_, from, inbox_);
@@ -366,7 +369,7 @@ class CostClassDijkstra final : public SuperstepAlgorithm {
           if (nb.rank == slabs_.rank)
             me.out_local[nb.thread].push_back(e);
           else
-            me.out_peer[slabs_.peer_slot[nb.rank]].push_back(e);
+            me.to_peer(slabs_.peer_slot[nb.rank], e);
         });
   }
 

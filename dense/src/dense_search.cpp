@@ -78,8 +78,8 @@ Decomposition describe_decomposition(const ObstacleSource& field, const Query& q
   for (const double w : free_states_per_layer(field, layout)) free += w;
   d.free_states = static_cast<std::uint64_t>(free + 0.5);
   for (int r = 0; r < ranks; ++r) {
-    const detail::SlabMap plan = detail::plan_slabs(field, layout, r, ranks,
-                                                    std::max(1, q.threads), q.block_sections);
+    const detail::SlabMap plan =
+        detail::plan_slabs(field, layout, r, ranks, std::max(1, q.threads), q.block_sections);
     d.cut_axis = plan.cut_axis;
     d.section_tiles = plan.section_tiles;
     d.block_sections = plan.block_sections;

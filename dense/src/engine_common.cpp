@@ -26,6 +26,7 @@ SlabMap plan_slabs(const ObstacleSource& field, const TileLayout& layout, int ra
   const int dims = layout.dims();
   s.cut_axis = cut_axis_for(layout, workers);
   s.section_tiles = static_cast<std::uint64_t>(layout.stride(s.cut_axis));
+  s.section_inverse = 1.0 / static_cast<double>(s.section_tiles);
   int sections = 1;
   for (int a = s.cut_axis; a < dims; ++a) sections *= layout.tiles(a);
   if (block_sections < 0)

@@ -149,7 +149,7 @@ class LevelBfs final : public SuperstepAlgorithm {
     me.active_now = 0;
   }
   void send_halo(std::vector<std::vector<std::byte>>& to) override {
-    halo_.send(threads_, slabs_.peers.size(), to);
+    HaloSwap<Entry>::send(threads_, slabs_.peers.size(), to);
   }
   void receive_halo(const std::vector<std::vector<std::byte>>& from) override {
     halo_.receive(slabs_, from, inbox_);
@@ -295,7 +295,7 @@ class LevelBfs final : public SuperstepAlgorithm {
           else if (nb.rank == slabs_.rank)
             me.out_local[nb.thread].push_back({u, bits});
           else
-            me.out_peer[slabs_.peer_slot[nb.rank]].push_back({u, bits});
+            me.to_peer(slabs_.peer_slot[nb.rank], {u, bits});
         });
   }
 

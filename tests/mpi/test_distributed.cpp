@@ -319,8 +319,7 @@ TEST(CSpaceRanks, ChainAndHypercubeGiveTheSerialCost) {
     for (const char* algo : {"astar", "dijkstra", "bfs", "wastar"}) {
       for (const char* mode : {"async", "bulk"}) {
         if (std::string(algo) == "bfs" && std::string(mode) == "bulk") continue;  // level-sync
-        SCOPED_TRACE(std::string(c.world) + " " + std::to_string(c.dims) + " " + algo + " " +
-                     mode);
+        SCOPED_TRACE(std::string(c.world) + " " + std::to_string(c.dims) + " " + algo + " " + mode);
         GridSearchOptions o;
         o.algorithm = parse_grid_algorithm(algo);
         distributed::DistGridOptions d;
@@ -433,8 +432,8 @@ TEST(DenseHighDims, EveryRankCountGivesTheSerialAnswer) {
       const GridReport r = distributed::solve_grid_distributed(p, o, {}, *g_comm);
       if (!root()) continue;
       const GridReport s = solve_grid(p, o);
-      SCOPED_TRACE(::testing::Message() << d << "D seed " << p.gog.seed << " " << algo
-                                        << " ranks " << g_comm->size());
+      SCOPED_TRACE(::testing::Message()
+                   << d << "D seed " << p.gog.seed << " " << algo << " ranks " << g_comm->size());
       EXPECT_EQ(r.options.engine, "dense");
       EXPECT_EQ(r.distribution.scheme, g_comm->size() == 1 ? "serial" : "dense_slabs");
       EXPECT_EQ(r.result.status, s.result.status);
