@@ -135,6 +135,9 @@ def main():
         ghost_max = max(pl["ghost_tiles"])
         halo_total = ENTRY_BYTES * v * sum(pl["ghost_tiles"])
         halo_rank_level = ENTRY_BYTES * v * ghost_max / levels100
+        # A level's halo is held twice (the outboxes, then the bytes received and the inboxes),
+        # and a busy level carries a few times the mean: 3 x the mean, twice.
+        halo_buffers = 2 * 3 * halo_rank_level
         imbalance = max(pl["tiles"]) / statistics.mean(pl["tiles"])
         compute = t_state * states / p * imbalance
         sync = levels100 * (2 * peers * ALPHA_S + 2 * ALPHA_S * math.log2(p)
@@ -142,6 +145,7 @@ def main():
         model.append({"ranks": p, "cut_axis": pl["cut_axis"], "section_tiles": pl["section_tiles"],
                       "block_sections": pl["block_sections"], "blocks": pl["blocks"],
                       "bytes_per_rank_max": max(pl["planned_bytes"]),
+                      "halo_buffer_bytes": halo_buffers,
                       "bytes_total": sum(pl["planned_bytes"]), "peers_max": peers,
                       "ghost_tiles_max": ghost_max, "ghost_bytes_max": ENTRY_BYTES * ghost_max,
                       "halo_bytes_total": halo_total,
@@ -161,14 +165,15 @@ def main():
           f"thread on {out['cpus']} cores ({o.rounds} runs each)\n")
     print("| P | cut axis | peers (max) | ghost tiles | halo MB | predicted MB | ratio | "
           "levels | exchange ms/level | busiest rank's expansions | its compute (model) s | "
-          "slowest rank s | run s |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "compute on the cores shared (model) s | slowest rank s | run s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         ratio = f"{r['halo_ratio']:.2f}" if r["halo_ratio"] else "-"
         print(f"| {r['ranks']} | {r['cut_axis']} | {r['peers_max']} | {r['ghost_tiles']} | "
               f"{r['halo_bytes'] / 1e6:.2f} | {r['halo_predicted'] / 1e6:.2f} | {ratio} | "
               f"{r['levels']} | {r['sync_ms_per_level']:.2f} | {r['busiest_expanded']} | "
-              f"{r['compute_s_predicted']:.3f} | {r['rank_search_s_max']:.3f} | "
+              f"{r['compute_s_predicted']:.3f} | {r['shared_cores_s_predicted']:.3f} | "
+              f"{r['rank_search_s_max']:.3f} | "
               f"{r['time_ms'] / 1e3:.3f} |")
     print(f"\nv = {v:.2f} levels per ghost tile (fitted at P = {fit['ranks'] if fit else '-'}); "
           f"t_state = {t_state * 1e9:.1f} ns (4D extent 100, one rank: "
@@ -176,12 +181,14 @@ def main():
     print(f"## Model: 6D extent 100 BFS (levels {levels100:.0f}, extrapolated from "
           f"{level_runs}; {states:.3g} states; network {ALPHA_S * 1e6:.0f} us, "
           f"{BETA_BPS / 1e9:.0f} GB/s)\n")
-    print("| P | cut axis | blocks | GiB per rank | peers | ghost MiB (max) | halo MB per rank "
-          "and level | tile imbalance | compute s | sync s | time s |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| P | cut axis | blocks | store GiB per rank | + halo buffers GiB | peers | "
+          "ghost MiB (max) | halo MB per rank and level | tile imbalance | compute s | sync s | "
+          "time s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for m in model:
         print(f"| {m['ranks']} | {m['cut_axis']} | {m['blocks']} | "
-              f"{m['bytes_per_rank_max'] / 2**30:.2f} | {m['peers_max']} | "
+              f"{m['bytes_per_rank_max'] / 2**30:.2f} | {m['halo_buffer_bytes'] / 2**30:.2f} | "
+              f"{m['peers_max']} | "
               f"{m['ghost_bytes_max'] / 2**20:.1f} | {m['halo_bytes_per_rank_level'] / 1e6:.2f} | "
               f"{m['tile_imbalance']:.3f} | {m['compute_s']:.1f} | {m['sync_s']:.2f} | "
               f"{m['time_s']:.1f} |")
