@@ -43,8 +43,9 @@ std::vector<ParamSpec> parameter_table() {
       integer("threads", 0, 4096, "0",
               "dense engine: OpenMP threads per process (0: this process's share of the cores)"),
       integer("slab_layers", 0, 65535, "0",
-              "dense engine: layers per block, blocks dealt round the ranks and threads (0: "
-              "about 4 blocks per thread, at least 4 layers each)"),
+              "dense engine: sections (layers, or rows of layers past 16 layers per worker) "
+              "per block, blocks dealt round the ranks and threads (0: about 4 blocks per "
+              "thread, at least 4 sections each)"),
       flag("contiguous_slabs",
            "dense engine: one slab per rank and thread, balanced by free states, instead of "
            "dealt blocks"),

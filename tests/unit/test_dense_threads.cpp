@@ -177,6 +177,40 @@ TEST(DenseThreads, TwoInProcessRanksOfTwoThreadsGiveTheOneRankAnswer) {
   std::remove((blocked + ".r0").c_str());
 }
 
+// Blocks that are pieces of layers (3 ranks x 2 threads outnumber the 10 layers' 16 per worker,
+// so the cut moves down an axis): the threads' merged outboxes to several peers, and the swap
+// over the peer list, under ThreadSanitizer; the one-rank answer, path and counts.
+TEST(DenseThreads, ThreeInProcessRanksOfTwoThreadsOnPiecesOfLayers) {
+  GogParams gp;
+  gp.seed = 9;
+  const GogField field(4, 10, gp);
+  for (const dense::Algorithm a : {dense::Algorithm::bfs, dense::Algorithm::dijkstra}) {
+    dense::LocalTransport local;
+    const dense::Result one = dense::search(field, corner_query(field, a, 1), local);
+    ASSERT_EQ(one.status, Status::solved);
+    test_support::InProcessRanks hub(3);
+    std::vector<dense::Result> results(3);
+    std::vector<std::string> errors(3);
+    hub.run([&](int rank) {
+      try {
+        test_support::InProcessTransport tr(hub, rank);
+        results[rank] = dense::search(field, corner_query(field, a, 2), tr);
+      } catch (const std::exception& e) {
+        errors[rank] = e.what();
+      }
+    });
+    EXPECT_EQ(errors[0] + errors[1] + errors[2], "");
+    const dense::Result& three = results[0];
+    EXPECT_LT(three.figures.cut_axis, 3);
+    EXPECT_GT(three.figures.halo_bytes, 0u);
+    EXPECT_EQ(three.status, one.status);
+    EXPECT_EQ(three.cost, one.cost);
+    EXPECT_EQ(three.path, one.path);
+    EXPECT_EQ(three.counters.expanded, one.counters.expanded);
+    EXPECT_EQ(three.counters.generated, one.counters.generated);
+  }
+}
+
 // The run's stop condition (asked on the calling thread once per level) says the run is under
 // way and holds it until another thread has cancelled: the run is then stopped mid-search on
 // any machine, at the next poll of the token by any thread.
