@@ -24,8 +24,13 @@ int main(int argc, char** argv) {
   std::uint64_t seed = GogParams{}.seed;
   std::vector<int> ranks;
   std::string algo = "bfs";
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string a = argv[i], v = argv[i + 1];
+  for (int i = 1; i < argc; i += 2) {
+    const std::string a = argv[i];
+    if (i + 1 == argc) {
+      std::fprintf(stderr, "hpcplan_dense_decomposition: %s needs a value\n", a.c_str());
+      return 2;
+    }
+    const std::string v = argv[i + 1];
     if (a == "--dims") {
       dims = std::atoi(v.c_str());
     } else if (a == "--extent") {

@@ -150,7 +150,12 @@ struct Outboxes {
   void clear() {
     for (auto& box : out_peer) box.clear();
     for (auto& box : out_local) box.clear();
-    ++epoch_;
+    // A new step: the window's slots are stale. After 2^32 steps the epoch wraps, and a slot
+    // of the step 2^32 ago would look current, so the window is emptied then.
+    if (++epoch_ == 0) {
+      std::fill(window_.begin(), window_.end(), Slot{});
+      epoch_ = 1;
+    }
   }
   std::uint64_t capacity_bytes() const {
     std::size_t n = 0;

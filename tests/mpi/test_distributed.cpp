@@ -390,7 +390,9 @@ TEST(DenseSlabs, EveryRankCountGivesTheSerialAnswerPathAndCounts) {
           EXPECT_EQ(r.result.counters.generated, s.result.counters.generated);
           ASSERT_TRUE(r.dense.has_value());
           EXPECT_EQ(r.dense->rank_sections.size(), static_cast<std::size_t>(g_comm->size()));
-          if (d >= 4 && g_comm->size() > 1) EXPECT_LT(r.dense->cut_axis, d - 1);
+          if (d >= 4 && g_comm->size() > 1) {
+            EXPECT_LT(r.dense->cut_axis, d - 1);
+          }
           std::uint64_t expanded = 0;
           for (const auto& k : r.distribution.per_rank) expanded += k.expanded;
           EXPECT_EQ(expanded, r.result.counters.expanded);
