@@ -26,6 +26,24 @@ std::vector<double> occupancy_free_per_layer(const OccupancyGrid& grid, const Ti
   return layers;
 }
 
+// below[k]: the cells of the first `axes` axes whose level sum is under k, for k = 0 to the
+// largest sum + 1 (a convolution of the axes' level histograms, then a running sum).
+std::vector<double> cells_below_level_sum(const GogField& field, int axes) {
+  std::vector<double> sums(1, 1.0);
+  for (int a = 0; a < axes; ++a) {
+    double hist[4] = {0, 0, 0, 0};
+    const std::uint8_t* table = field.level_table(a);
+    for (int x = 0; x < field.extent(); ++x) hist[table[x]] += 1.0;
+    std::vector<double> next(sums.size() + 3, 0.0);
+    for (std::size_t i = 0; i < sums.size(); ++i)
+      for (int l = 0; l < 4; ++l) next[i + l] += sums[i] * hist[l];
+    sums.swap(next);
+  }
+  std::vector<double> below(sums.size() + 1, 0.0);
+  for (std::size_t i = 0; i < sums.size(); ++i) below[i + 1] = below[i] + sums[i];
+  return below;
+}
+
 // The tile coordinates of section `s` on the axes from `cut` up (one cell per tile there).
 void section_coords(const TileLayout& layout, int cut, std::uint64_t s, int* c) {
   for (int a = cut; a < layout.dims(); ++a) {
@@ -67,24 +85,12 @@ std::vector<double> free_states_per_section(const ObstacleSource& source, const 
     return sections;
   }
   const GogField& field = source.gog();
-  // Cells of the axes below the cut by level sum, then those below each possible sum.
-  std::vector<double> sums(1, 1.0);
-  for (int a = 0; a < cut; ++a) {
-    double hist[4] = {0, 0, 0, 0};
-    const std::uint8_t* table = field.level_table(a);
-    for (int x = 0; x < field.extent(); ++x) hist[table[x]] += 1.0;
-    std::vector<double> next(sums.size() + 3, 0.0);
-    for (std::size_t i = 0; i < sums.size(); ++i)
-      for (int l = 0; l < 4; ++l) next[i + l] += sums[i] * hist[l];
-    sums.swap(next);
-  }
-  std::vector<double> below(sums.size() + 1, 0.0);
-  for (std::size_t i = 0; i < sums.size(); ++i) below[i + 1] = below[i] + sums[i];
+  const std::vector<double> below = cells_below_level_sum(field, cut);
   for (std::uint64_t s = 0; s < sections.size(); ++s) {
     section_coords(layout, cut, s, c);
     int room = field.threshold();
     for (int a = cut; a < dims; ++a) room -= field.level_table(a)[c[a]];
-    sections[s] = room <= 0 ? 0.0 : below[std::min<std::size_t>(room, sums.size())];
+    sections[s] = room <= 0 ? 0.0 : below[std::min<std::size_t>(room, below.size() - 1)];
   }
   return sections;
 }
@@ -93,26 +99,13 @@ std::vector<double> free_states_per_layer(const ObstacleSource& source, const Ti
   if (source.is_occupancy()) return occupancy_free_per_layer(source.occupancy(), layout);
   const GogField& field = source.gog();
   const int dims = field.dims(), extent = field.extent(), last = dims - 1;
-  // Cells of the first d - 1 axes by level sum.
-  std::vector<double> sums(1, 1.0);
-  for (int a = 0; a < last; ++a) {
-    double hist[4] = {0, 0, 0, 0};
-    const std::uint8_t* table = field.level_table(a);
-    for (int c = 0; c < extent; ++c) hist[table[c]] += 1.0;
-    std::vector<double> next(sums.size() + 3, 0.0);
-    for (std::size_t s = 0; s < sums.size(); ++s)
-      for (int l = 0; l < 4; ++l) next[s + l] += sums[s] * hist[l];
-    sums.swap(next);
-  }
-  // Cross-sections with fewer than `below` in level sum, for every possible `below`.
-  std::vector<double> below(sums.size() + 1, 0.0);
-  for (std::size_t s = 0; s < sums.size(); ++s) below[s + 1] = below[s] + sums[s];
+  const std::vector<double> below = cells_below_level_sum(field, last);
   const std::uint8_t* table = field.level_table(last);
   std::vector<double> layers(layout.layers(), 0.0);
   const int side = layout.side(last);
   for (int z = 0; z < extent; ++z) {
     const int room = field.threshold() - table[z];
-    const double free = room <= 0 ? 0.0 : below[std::min<std::size_t>(room, sums.size())];
+    const double free = room <= 0 ? 0.0 : below[std::min<std::size_t>(room, below.size() - 1)];
     layers[z / side] += free;
   }
   return layers;
