@@ -10,8 +10,10 @@ int cut_axis_for(const TileLayout& layout, int workers) {
   if (workers <= 1) return cut;
   std::uint64_t sections = static_cast<std::uint64_t>(layout.tiles(cut));
   // Down through the axes of one cell per tile, while the sections stay few enough to list
-  // (one int each) and there are too few of them.
-  while (sections < wanted && cut - 1 >= layout.in_tile_axes() &&
+  // (one int each) and there are too few of them, and over kMaxCutAxes axes at most (a
+  // section has 3^k - 1 neighbours to look through for peers over k axes).
+  const int lowest = std::max(layout.in_tile_axes(), layout.dims() - kMaxCutAxes);
+  while (sections < wanted && cut - 1 >= lowest &&
          sections * static_cast<std::uint64_t>(layout.tiles(cut - 1)) <= (std::uint64_t{1} << 30))
     sections *= static_cast<std::uint64_t>(layout.tiles(--cut));
   return cut;

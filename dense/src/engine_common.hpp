@@ -91,9 +91,9 @@ struct SlabMap {
   // one entry per tile of them per step, once merged).
   std::uint64_t ghost_sections = 0;
 
-  // The section of a tile: by a double reciprocal and one correction, not a division (a
-  // target outside its source's block pays it, and a 64-bit division there cost 15% of a
-  // two-rank 5D BFS). Exact: tile indices stay far below 2^53 (TileLayout::kMaxTiles).
+  // The section of a tile (asked for every target outside its source's block and every entry
+  // received): by a double reciprocal and one correction, as TileLayout::tile_coords divides,
+  // not by a 64-bit division. Exact: tile indices stay far below 2^53 (TileLayout::kMaxTiles).
   int section_of(std::uint64_t tile) const {
     auto q = static_cast<std::uint64_t>(static_cast<double>(tile) * section_inverse);
     if (q * section_tiles > tile)
@@ -254,16 +254,16 @@ class DistanceWriter {
         // the axes below the cut, in the grid's order too.
         bool any = false;
         for (int s = b.s0; s < b.s1; ++s) {
-          std::uint64_t rest = static_cast<std::uint64_t>(s), at = 0;
+          std::uint64_t rest = static_cast<std::uint64_t>(s), cell = 0;  // its first cell
           bool inside = true;
           for (int a = slabs.cut_axis; a < dims_; ++a) {
             const auto c = static_cast<std::int64_t>(rest % layout.tiles(a));
             rest /= layout.tiles(a);
             inside = inside && c < field.size(a);
-            at += static_cast<std::uint64_t>(c * stride_[a]);
+            cell += static_cast<std::uint64_t>(c * stride_[a]);
           }
           if (!inside) continue;
-          if (!any) first = at;
+          if (!any) first = cell;
           any = true;
           count += static_cast<std::uint64_t>(stride_[slabs.cut_axis]);
         }
@@ -305,8 +305,12 @@ inline constexpr int kBlocksPerWorker = 4;
 // The cut moves below the last axis while it has fewer sections than this per worker.
 inline constexpr int kSectionsPerWorker = 4 * kBlocksPerWorker;
 
+// The cut spans at most this many axes (the last ones).
+inline constexpr int kMaxCutAxes = 6;
+
 // The cut axis for `workers` ranks x threads: the last axis, or the highest one below it (of
-// one cell per tile) whose sections number at least kSectionsPerWorker per worker.
+// one cell per tile, within the last kMaxCutAxes) whose sections number at least
+// kSectionsPerWorker per worker, or the lowest it may take.
 int cut_axis_for(const TileLayout& layout, int workers);
 
 SlabMap plan_slabs(const ObstacleSource& field, const TileLayout& layout, int rank, int ranks,
