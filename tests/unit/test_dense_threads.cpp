@@ -36,6 +36,27 @@ dense::Query corner_query(const GogField& field, dense::Algorithm a, int threads
   return q;
 }
 
+// Each rank's result of `field` searched on `ranks` in-process ranks (support/
+// in_process_ranks.hpp) with the query `query(rank)`, and each rank's error ("" if none).
+struct RankRuns {
+  std::vector<dense::Result> results;
+  std::vector<std::string> errors;
+};
+RankRuns run_ranks(const GogField& field, int ranks,
+                   const std::function<dense::Query(int)>& query) {
+  test_support::InProcessRanks hub(ranks);
+  RankRuns runs{std::vector<dense::Result>(ranks), std::vector<std::string>(ranks)};
+  hub.run([&](int rank) {
+    try {
+      test_support::InProcessTransport tr(hub, rank);
+      runs.results[rank] = dense::search(field, query(rank), tr);
+    } catch (const std::exception& e) {
+      runs.errors[rank] = e.what();
+    }
+  });
+  return runs;
+}
+
 // Checkpoints are written by the master thread between two barriers while the others wait,
 // and read before the threads start: an interrupted run restarted on 3 threads, from a
 // checkpoint written at every boundary until it ends, gives the uninterrupted answer.
@@ -110,23 +131,15 @@ TEST(DenseThreads, TwoInProcessRanksOfTwoThreadsGiveTheOneRankAnswer) {
     const dense::Result one = dense::search(field, corner_query(field, a, 1), local);
     ASSERT_EQ(one.status, Status::solved);
     auto run_two = [&](const std::function<void(dense::Query&)>& edit) {
-      test_support::InProcessRanks hub(2);
-      std::vector<dense::Result> results(2);
-      std::vector<std::string> errors(2);
-      hub.run([&](int rank) {
-        try {
-          test_support::InProcessTransport tr(hub, rank);
-          dense::Query q = corner_query(field, a, 2);
-          q.block_sections = 2;  // several blocks per rank: faces between threads and ranks
-          edit(q);
-          results[rank] = dense::search(field, q, tr);
-        } catch (const std::exception& e) {
-          errors[rank] = e.what();
-        }
+      const RankRuns runs = run_ranks(field, 2, [&](int) {
+        dense::Query q = corner_query(field, a, 2);
+        q.block_sections = 2;  // several blocks per rank: faces between threads and ranks
+        edit(q);
+        return q;
       });
-      EXPECT_EQ(errors[0] + errors[1], "");
-      EXPECT_EQ(results[0].status, results[1].status);
-      return results[0];
+      EXPECT_EQ(runs.errors[0] + runs.errors[1], "");
+      EXPECT_EQ(runs.results[0].status, runs.results[1].status);
+      return runs.results[0];
     };
     const dense::Result two = run_two([](dense::Query&) {});
     EXPECT_EQ(two.figures.ranks, 2);
@@ -158,19 +171,13 @@ TEST(DenseThreads, TwoInProcessRanksOfTwoThreadsGiveTheOneRankAnswer) {
   // every rank learns of it and throws, none waits for the failed one.
   const std::string blocked = file + "-blocked";
   std::filesystem::create_directories(blocked + ".r1");
-  test_support::InProcessRanks hub(2);
-  std::vector<std::string> errors(2);
-  hub.run([&](int rank) {
-    try {
-      test_support::InProcessTransport tr(hub, rank);
-      dense::Query q = corner_query(field, dense::Algorithm::bfs, 2);
-      q.checkpointing.path = blocked;
-      q.checkpointing.interrupted = [] { return true; };
-      dense::search(field, q, tr);
-    } catch (const std::exception& e) {
-      errors[rank] = e.what();
-    }
-  });
+  auto interrupted = [&](int) {
+    dense::Query q = corner_query(field, dense::Algorithm::bfs, 2);
+    q.checkpointing.path = blocked;
+    q.checkpointing.interrupted = [] { return true; };
+    return q;
+  };
+  const std::vector<std::string> errors = run_ranks(field, 2, interrupted).errors;
   EXPECT_NE(errors[1].find(blocked + ".r1"), std::string::npos) << errors[1];
   EXPECT_NE(errors[0].find("another rank failed"), std::string::npos) << errors[0];
   std::filesystem::remove_all(blocked + ".r1");
@@ -188,19 +195,9 @@ TEST(DenseThreads, ThreeInProcessRanksOfTwoThreadsOnPiecesOfLayers) {
     dense::LocalTransport local;
     const dense::Result one = dense::search(field, corner_query(field, a, 1), local);
     ASSERT_EQ(one.status, Status::solved);
-    test_support::InProcessRanks hub(3);
-    std::vector<dense::Result> results(3);
-    std::vector<std::string> errors(3);
-    hub.run([&](int rank) {
-      try {
-        test_support::InProcessTransport tr(hub, rank);
-        results[rank] = dense::search(field, corner_query(field, a, 2), tr);
-      } catch (const std::exception& e) {
-        errors[rank] = e.what();
-      }
-    });
-    EXPECT_EQ(errors[0] + errors[1] + errors[2], "");
-    const dense::Result& three = results[0];
+    const RankRuns runs = run_ranks(field, 3, [&](int) { return corner_query(field, a, 2); });
+    EXPECT_EQ(runs.errors[0] + runs.errors[1] + runs.errors[2], "");
+    const dense::Result& three = runs.results[0];
     EXPECT_LT(three.figures.cut_axis, 3);
     EXPECT_GT(three.figures.halo_bytes, 0u);
     EXPECT_EQ(three.status, one.status);
