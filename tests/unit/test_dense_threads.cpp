@@ -36,6 +36,15 @@ dense::Query corner_query(const GogField& field, dense::Algorithm a, int threads
   return q;
 }
 
+// The answer, path and counts that must not depend on threads or ranks.
+void expect_same_answer(const dense::Result& got, const dense::Result& want) {
+  EXPECT_EQ(got.status, want.status);
+  EXPECT_EQ(got.cost, want.cost);
+  EXPECT_EQ(got.path, want.path);
+  EXPECT_EQ(got.counters.expanded, want.counters.expanded);
+  EXPECT_EQ(got.counters.generated, want.counters.generated);
+}
+
 // Each rank's result of `field` searched on `ranks` in-process ranks (support/
 // in_process_ranks.hpp) with the query `query(rank)`, and each rank's error ("" if none).
 struct RankRuns {
@@ -106,11 +115,7 @@ TEST(DenseThreads, EveryThreadCountGivesTheOneThreadAnswer) {
           const dense::Result r = dense::search(field, q, local);
           SCOPED_TRACE(::testing::Message()
                        << d << "D threads " << threads << " blocks " << block_sections);
-          EXPECT_EQ(r.status, one.status);
-          EXPECT_EQ(r.cost, one.cost);
-          EXPECT_EQ(r.path, one.path);
-          EXPECT_EQ(r.counters.expanded, one.counters.expanded);
-          EXPECT_EQ(r.counters.generated, one.counters.generated);
+          expect_same_answer(r, one);
           EXPECT_GE(r.figures.threads, 1);
         }
     }
@@ -144,11 +149,7 @@ TEST(DenseThreads, TwoInProcessRanksOfTwoThreadsGiveTheOneRankAnswer) {
     const dense::Result two = run_two([](dense::Query&) {});
     EXPECT_EQ(two.figures.ranks, 2);
     EXPECT_GT(two.figures.halo_bytes, 0u);
-    EXPECT_EQ(two.status, one.status);
-    EXPECT_EQ(two.cost, one.cost);
-    EXPECT_EQ(two.path, one.path);
-    EXPECT_EQ(two.counters.expanded, one.counters.expanded);
-    EXPECT_EQ(two.counters.generated, one.counters.generated);
+    expect_same_answer(two, one);
     EXPECT_EQ(two.figures.levels, one.figures.levels);
     // Interrupted at its first boundary, then restarted from FILE.r0 and FILE.r1.
     const dense::Result stopped = run_two([&](dense::Query& q) {
@@ -200,11 +201,7 @@ TEST(DenseThreads, ThreeInProcessRanksOfTwoThreadsOnPiecesOfLayers) {
     const dense::Result& three = runs.results[0];
     EXPECT_LT(three.figures.cut_axis, 3);
     EXPECT_GT(three.figures.halo_bytes, 0u);
-    EXPECT_EQ(three.status, one.status);
-    EXPECT_EQ(three.cost, one.cost);
-    EXPECT_EQ(three.path, one.path);
-    EXPECT_EQ(three.counters.expanded, one.counters.expanded);
-    EXPECT_EQ(three.counters.generated, one.counters.generated);
+    expect_same_answer(three, one);
   }
 }
 
