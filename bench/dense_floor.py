@@ -36,19 +36,7 @@ def grid(binary, args, ranks=0, timeout=3600):
 
 
 def alternated(a, b, rounds):
-    """Runs a and b (each a (binary, args, ranks) triple) in turn; medians and b/a ratios."""
-    ta, tb, ratios, last = [], [], [], None
-    for _ in range(rounds):
-        ra, rb = grid(*a), grid(*b)
-        if ra["status"] != rb["status"] or abs((ra["cost"] or 0) - (rb["cost"] or 0)) > 1e-9:
-            sys.exit(f"dense_floor: different answers for {a} and {b}")
-        ta.append(ra["time_ms"])
-        tb.append(rb["time_ms"])
-        ratios.append(ra["time_ms"] / rb["time_ms"])
-        last = (ra, rb)
-    return {"a_ms": statistics.median(ta), "b_ms": statistics.median(tb),
-            "speedup": statistics.median(ratios), "speedup_min": min(ratios),
-            "speedup_max": max(ratios), "a": last[0], "b": last[1]}
+    return dense_runs.alternated(a, b, rounds, who="dense_floor")
 
 
 def main():
@@ -74,8 +62,8 @@ def main():
         new = r["b"]
         out["bfs4_vs_old"] = {k: v for k, v in r.items() if k not in ("a", "b")}
         md.append(f"| 4D e100 BFS, 1 thread: old / new (median ratio, min-max) | "
-                  f"{r['a_ms']:.0f} / {r['b_ms']:.0f} ms ({r['speedup']:.2f}x, "
-                  f"{r['speedup_min']:.2f}-{r['speedup_max']:.2f}) |")
+                  f"{r['a_ms']:.0f} / {r['b_ms']:.0f} ms ({r['ratio']:.2f}x, "
+                  f"{r['ratio_min']:.2f}-{r['ratio_max']:.2f}) |")
         t1 = r["b_ms"]
     else:
         runs = [grid(*one) for _ in range(o.rounds)]
@@ -102,13 +90,13 @@ def main():
 
     r = alternated(one, (CLI, bfs4 + ["--threads", "2"], 0), o.rounds)
     out["threads2"] = {k: v for k, v in r.items() if k not in ("a", "b")}
-    md.append(f"| 4D e100 BFS, 2 threads over 1 (median ratio, min-max) | {r['speedup']:.2f}x "
-              f"({r['speedup_min']:.2f}-{r['speedup_max']:.2f}) |")
+    md.append(f"| 4D e100 BFS, 2 threads over 1 (median ratio, min-max) | {r['ratio']:.2f}x "
+              f"({r['ratio_min']:.2f}-{r['ratio_max']:.2f}) |")
     if dense_runs.MPIRUN:
         r = alternated(one, (CLI, bfs4 + ["--threads", "1"], 2), o.rounds)
         out["ranks2"] = {k: v for k, v in r.items() if k not in ("a", "b")}
         md.append(f"| 4D e100 BFS, 2 ranks x 1 thread over 1 (median ratio, min-max) | "
-                  f"{r['speedup']:.2f}x ({r['speedup_min']:.2f}-{r['speedup_max']:.2f}) |")
+                  f"{r['ratio']:.2f}x ({r['ratio_min']:.2f}-{r['ratio_max']:.2f}) |")
 
     for dims, extent in ((4, 60), (6, 11)):
         args = ["--dims", str(dims), "--extent", str(extent), "--algo", "dijkstra",
@@ -118,7 +106,7 @@ def main():
             r = alternated((o.old, args, 0), (CLI, args, 0), o.rounds)
             out[key] = {k: v for k, v in r.items() if k not in ("a", "b")}
             md.append(f"| {dims}D e{extent} Dijkstra, 1 thread: old / new | {r['a_ms']:.0f} / "
-                      f"{r['b_ms']:.0f} ms ({r['speedup']:.2f}x) |")
+                      f"{r['b_ms']:.0f} ms ({r['ratio']:.2f}x) |")
         else:
             t = statistics.median(grid(CLI, args)["time_ms"] for _ in range(o.rounds))
             out[key] = {"median_ms": t}

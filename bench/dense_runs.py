@@ -1,8 +1,9 @@
-"""One `hpcplan grid --json` run, timed from outside, for the dense engine's bench scripts
-(dense_targets.py, dense_floor.py)."""
+"""One `hpcplan grid --json` run, timed from outside, and two runs alternated round by round,
+for the dense engine's bench scripts (dense_targets.py, dense_floor.py, dense_blocks.py)."""
 import json
 import os
 import shutil
+import statistics
 import subprocess
 import sys
 
@@ -33,3 +34,21 @@ def grid(binary, args, ranks=0, timeout=3600, who="bench"):
     j = json.loads(p.stdout)
     j["_wall_s"], j["_rss_bytes"] = float(wall), int(rss_kb) * 1024
     return j
+
+
+def alternated(a, b, rounds, who="bench"):
+    """Runs a and b (each a (binary, args, ranks) triple) in turn, `rounds` times: the median
+    times (a_ms, b_ms) and the median, least and largest per-round a/b time ratio (b's speed-up
+    over a). Exits if a round's two answers differ."""
+    ta, tb, ratios, last = [], [], [], None
+    for _ in range(rounds):
+        ra, rb = grid(*a, who=who), grid(*b, who=who)
+        if ra["status"] != rb["status"] or abs((ra["cost"] or 0) - (rb["cost"] or 0)) > 1e-9:
+            sys.exit(f"{who}: different answers for {a} and {b}")
+        ta.append(ra["time_ms"])
+        tb.append(rb["time_ms"])
+        ratios.append(ra["time_ms"] / rb["time_ms"])
+        last = (ra, rb)
+    return {"a_ms": statistics.median(ta), "b_ms": statistics.median(tb),
+            "ratio": statistics.median(ratios), "ratio_min": min(ratios),
+            "ratio_max": max(ratios), "a": last[0], "b": last[1]}

@@ -38,19 +38,8 @@ def grid(args, timeout=3600):
 
 
 def alternated(a_args, b_args, repeats):
-    """Runs a and b alternately; returns medians and the per-round b/a time ratios."""
-    ta, tb, ratios, last = [], [], [], None
-    for _ in range(repeats):
-        ra, rb = grid(a_args), grid(b_args)
-        if ra["status"] != rb["status"] or abs((ra["cost"] or 0) - (rb["cost"] or 0)) > 1e-9:
-            sys.exit(f"dense_targets: different answers for {a_args} and {b_args}")
-        ta.append(ra["time_ms"])
-        tb.append(rb["time_ms"])
-        ratios.append(ra["time_ms"] / rb["time_ms"])
-        last = (ra, rb)
-    return {"a_ms": statistics.median(ta), "b_ms": statistics.median(tb),
-            "ratio": statistics.median(ratios), "ratio_min": min(ratios), "ratio_max": max(ratios),
-            "a": last[0], "b": last[1]}
+    """Runs a and b alternately; returns medians and the per-round a/b time ratios."""
+    return dense_runs.alternated((CLI, a_args, 0), (CLI, b_args, 0), repeats, who="dense_targets")
 
 
 def mpi_scaling(problem, repeats):
